@@ -1,0 +1,90 @@
+// Geometry of one 8-node hexahedron (VTK_HEXAHEDRON order), DESIGN §2: each
+// (possibly non-planar) quadrilateral face is split into 4 triangles around its
+// face point (the mean of its 4 nodes); the cell is the 24-facet polyhedron they
+// bound. Everything here is a per-cell device function, reused by the kernels,
+// the boundary set-up on the host, and the unit tests.
+#pragma once
+
+#include "math.hpp"
+
+namespace lagremap::hex {
+
+// Local nodes of face f, ordered so that the right-hand rule points out of the
+// cell. Face f lies on box side f of a generated block: 0 x-, 1 x+, 2 y-, 3 y+,
+// 4 z-, 5 z+.
+KOKKOS_INLINE_FUNCTION int faceNode(int f, int k) {
+  const int face_nodes[6][4] = {{0, 4, 7, 3}, {1, 2, 6, 5}, {0, 1, 5, 4},
+                                {3, 7, 6, 2}, {0, 3, 2, 1}, {4, 5, 6, 7}};
+  return face_nodes[f][k];
+}
+
+// Corner-face area vectors of one face (DESIGN §2):
+//   s_pf n_pf = 1/3 ( sum of the 2 triangles holding p + 1/4 sum of the 4 triangles )
+// q: the 4 face nodes in outward order; w[k]: vector of node q[k].
+// Returns the face's total area vector (sum of its 4 triangles).
+KOKKOS_INLINE_FUNCTION Vec3 faceCornerVectors(const Vec3 q[4], Vec3 w[4]) {
+  const Vec3 face_point = 0.25 * (q[0] + q[1] + q[2] + q[3]);
+  Vec3 tri[4];  // triangle (q_k, q_k+1, face_point), area vector 1/2 (b-a) x (c-a)
+  for (int k = 0; k < 4; ++k) {
+    tri[k] = 0.5 * cross(q[(k + 1) & 3] - q[k], face_point - q[k]);
+  }
+  const Vec3 face_area = tri[0] + tri[1] + tri[2] + tri[3];
+  for (int k = 0; k < 4; ++k) {
+    w[k] = (1.0 / 3.0) * (tri[(k + 3) & 3] + tri[k] + 0.25 * face_area);
+  }
+  return face_area;
+}
+
+// Gathers the 4 nodes of face f from the 8 cell nodes.
+KOKKOS_INLINE_FUNCTION void faceNodes(const Vec3 x[8], int f, Vec3 q[4]) {
+  for (int k = 0; k < 4; ++k) q[k] = x[faceNode(f, k)];
+}
+
+struct CellShape {
+  double volume;
+  Vec3 centroid;
+  double max_face_area;
+};
+
+// Volume and centroid of the 24-facet polyhedron: signed tetrahedra from a
+// cell-local origin (node 0, to keep round-off relative to the cell size) to
+// each triangle; max face area for the characteristic length.
+KOKKOS_INLINE_FUNCTION CellShape cellShape(const Vec3 x[8]) {
+  const Vec3 origin = x[0];
+  double volume = 0.0;
+  Vec3 first_moment{0.0, 0.0, 0.0};  // relative to origin
+  double max_area2 = 0.0;
+  for (int f = 0; f < 6; ++f) {
+    Vec3 q[4];
+    for (int k = 0; k < 4; ++k) q[k] = x[faceNode(f, k)] - origin;
+    const Vec3 face_point = 0.25 * (q[0] + q[1] + q[2] + q[3]);
+    Vec3 face_area{0.0, 0.0, 0.0};
+    for (int k = 0; k < 4; ++k) {
+      const Vec3& a = q[k];
+      const Vec3& b = q[(k + 1) & 3];
+      // tet (origin, a, b, face_point): 1/6 a . (b x face_point)
+      const Vec3 b_cross_f = cross(b, face_point);
+      const double tet_volume = dot(a, b_cross_f) / 6.0;
+      volume += tet_volume;
+      first_moment += (0.25 * tet_volume) * (a + b + face_point);
+      face_area += 0.5 * cross(b - a, face_point - a);
+    }
+    const double area2 = dot(face_area, face_area);
+    max_area2 = area2 > max_area2 ? area2 : max_area2;
+  }
+  const Vec3 centroid = origin + (1.0 / volume) * first_moment;
+  return {volume, centroid, math::sqrt(max_area2)};
+}
+
+// The 8 corner vectors A_cp = sum_f s_pf n_pf = d v_c / d x_p (GCL, DESIGN §2).
+KOKKOS_INLINE_FUNCTION void cornerVectors(const Vec3 x[8], Vec3 corner[8]) {
+  for (int p = 0; p < 8; ++p) corner[p] = Vec3{0.0, 0.0, 0.0};
+  for (int f = 0; f < 6; ++f) {
+    Vec3 q[4], w[4];
+    faceNodes(x, f, q);
+    faceCornerVectors(q, w);
+    for (int k = 0; k < 4; ++k) corner[faceNode(f, k)] += w[k];
+  }
+}
+
+}  // namespace lagremap::hex

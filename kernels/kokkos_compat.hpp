@@ -1,0 +1,30 @@
+// The one place that bridges Kokkos 3.x and 4.x spellings, so the kernels
+// compile unchanged against the Kokkos 3.4.01 built by scripts/setup.sh and any
+// newer Kokkos a user points Kokkos_ROOT at (DESIGN §6).
+#pragma once
+
+#include <Kokkos_Core.hpp>
+
+namespace lagremap::math {
+
+#if KOKKOS_VERSION >= 30700
+using Kokkos::fabs;
+using Kokkos::cbrt;
+using Kokkos::fmax;
+using Kokkos::fmin;
+using Kokkos::isfinite;
+using Kokkos::log;
+using Kokkos::pow;
+using Kokkos::sqrt;
+#else
+using Kokkos::Experimental::fabs;
+using Kokkos::Experimental::cbrt;
+using Kokkos::Experimental::fmax;
+using Kokkos::Experimental::fmin;
+using Kokkos::Experimental::isfinite;
+using Kokkos::Experimental::log;
+using Kokkos::Experimental::pow;
+using Kokkos::Experimental::sqrt;
+#endif
+
+}  // namespace lagremap::math

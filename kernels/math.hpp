@@ -1,0 +1,147 @@
+// Small aggregate value types for device code (STYLE §7): Vec3, Mat3 (full
+// 3x3, row-major) and SymMat3 (xx, yy, zz, xy, yz, xz). All operations are
+// KOKKOS_INLINE_FUNCTION and allocation-free so they run on any backend.
+#pragma once
+
+#include "kokkos_compat.hpp"
+
+namespace lagremap {
+
+struct Vec3 {
+  double x, y, z;
+};
+
+KOKKOS_INLINE_FUNCTION Vec3 operator+(const Vec3& a, const Vec3& b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+KOKKOS_INLINE_FUNCTION Vec3 operator-(const Vec3& a, const Vec3& b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+KOKKOS_INLINE_FUNCTION Vec3 operator-(const Vec3& a) { return {-a.x, -a.y, -a.z}; }
+KOKKOS_INLINE_FUNCTION Vec3 operator*(double s, const Vec3& a) { return {s * a.x, s * a.y, s * a.z}; }
+KOKKOS_INLINE_FUNCTION Vec3 operator*(const Vec3& a, double s) { return s * a; }
+KOKKOS_INLINE_FUNCTION Vec3& operator+=(Vec3& a, const Vec3& b) {
+  a.x += b.x;
+  a.y += b.y;
+  a.z += b.z;
+  return a;
+}
+KOKKOS_INLINE_FUNCTION Vec3& operator-=(Vec3& a, const Vec3& b) {
+  a.x -= b.x;
+  a.y -= b.y;
+  a.z -= b.z;
+  return a;
+}
+KOKKOS_INLINE_FUNCTION double dot(const Vec3& a, const Vec3& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+KOKKOS_INLINE_FUNCTION Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+KOKKOS_INLINE_FUNCTION double norm(const Vec3& a) { return math::sqrt(dot(a, a)); }
+
+// Symmetric 3x3 tensor, Voigt-like order xx, yy, zz, xy, yz, xz.
+struct SymMat3 {
+  double xx, yy, zz, xy, yz, xz;
+};
+
+KOKKOS_INLINE_FUNCTION SymMat3 operator+(const SymMat3& a, const SymMat3& b) {
+  return {a.xx + b.xx, a.yy + b.yy, a.zz + b.zz, a.xy + b.xy, a.yz + b.yz, a.xz + b.xz};
+}
+KOKKOS_INLINE_FUNCTION SymMat3& operator+=(SymMat3& a, const SymMat3& b) {
+  a = a + b;
+  return a;
+}
+KOKKOS_INLINE_FUNCTION SymMat3 operator*(double s, const SymMat3& a) {
+  return {s * a.xx, s * a.yy, s * a.zz, s * a.xy, s * a.yz, s * a.xz};
+}
+KOKKOS_INLINE_FUNCTION Vec3 operator*(const SymMat3& m, const Vec3& v) {
+  return {m.xx * v.x + m.xy * v.y + m.xz * v.z, m.xy * v.x + m.yy * v.y + m.yz * v.z,
+          m.xz * v.x + m.yz * v.y + m.zz * v.z};
+}
+KOKKOS_INLINE_FUNCTION SymMat3 identitySym(double s = 1.0) { return {s, s, s, 0.0, 0.0, 0.0}; }
+// a (x) a / scale
+KOKKOS_INLINE_FUNCTION SymMat3 outerSelf(const Vec3& a, double scale) {
+  return {scale * a.x * a.x, scale * a.y * a.y, scale * a.z * a.z,
+          scale * a.x * a.y, scale * a.y * a.z, scale * a.x * a.z};
+}
+KOKKOS_INLINE_FUNCTION double trace(const SymMat3& m) { return m.xx + m.yy + m.zz; }
+KOKKOS_INLINE_FUNCTION double det(const SymMat3& m) {
+  return m.xx * (m.yy * m.zz - m.yz * m.yz) - m.xy * (m.xy * m.zz - m.yz * m.xz) +
+         m.xz * (m.xy * m.yz - m.yy * m.xz);
+}
+KOKKOS_INLINE_FUNCTION SymMat3 dev(const SymMat3& m) {
+  const double third_trace = trace(m) / 3.0;
+  return {m.xx - third_trace, m.yy - third_trace, m.zz - third_trace, m.xy, m.yz, m.xz};
+}
+// Inverse by cofactors; the caller guarantees det != 0.
+KOKKOS_INLINE_FUNCTION SymMat3 inverse(const SymMat3& m) {
+  const double c_xx = m.yy * m.zz - m.yz * m.yz;
+  const double c_xy = m.xz * m.yz - m.xy * m.zz;
+  const double c_xz = m.xy * m.yz - m.yy * m.xz;
+  const double inv_det = 1.0 / (m.xx * c_xx + m.xy * c_xy + m.xz * c_xz);
+  return {inv_det * c_xx,
+          inv_det * (m.xx * m.zz - m.xz * m.xz),
+          inv_det * (m.xx * m.yy - m.xy * m.xy),
+          inv_det * c_xy,
+          inv_det * (m.xy * m.xz - m.xx * m.yz),
+          inv_det * c_xz};
+}
+KOKKOS_INLINE_FUNCTION double ddot(const SymMat3& a, const SymMat3& b) {
+  return a.xx * b.xx + a.yy * b.yy + a.zz * b.zz + 2.0 * (a.xy * b.xy + a.yz * b.yz + a.xz * b.xz);
+}
+
+// General 3x3 tensor, row-major: m[i][j].
+struct Mat3 {
+  double m[3][3];
+};
+
+KOKKOS_INLINE_FUNCTION Mat3 zeroMat() { return {{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}}; }
+// a (x) b accumulated with weight s: m_ij += s a_i b_j
+KOKKOS_INLINE_FUNCTION void addOuter(Mat3& m, double s, const Vec3& a, const Vec3& b) {
+  const double as[3] = {s * a.x, s * a.y, s * a.z};
+  const double bs[3] = {b.x, b.y, b.z};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) m.m[i][j] += as[i] * bs[j];
+}
+KOKKOS_INLINE_FUNCTION Vec3 operator*(const Mat3& a, const Vec3& v) {
+  return {a.m[0][0] * v.x + a.m[0][1] * v.y + a.m[0][2] * v.z,
+          a.m[1][0] * v.x + a.m[1][1] * v.y + a.m[1][2] * v.z,
+          a.m[2][0] * v.x + a.m[2][1] * v.y + a.m[2][2] * v.z};
+}
+KOKKOS_INLINE_FUNCTION double trace(const Mat3& a) { return a.m[0][0] + a.m[1][1] + a.m[2][2]; }
+KOKKOS_INLINE_FUNCTION SymMat3 symPart(const Mat3& a) {
+  return {a.m[0][0],
+          a.m[1][1],
+          a.m[2][2],
+          0.5 * (a.m[0][1] + a.m[1][0]),
+          0.5 * (a.m[1][2] + a.m[2][1]),
+          0.5 * (a.m[0][2] + a.m[2][0])};
+}
+
+// View accessors: read/write one entity's Vec3 / SymMat3 from SoA Views.
+template <class View>
+KOKKOS_INLINE_FUNCTION Vec3 loadVec3(const View& v, int i) {
+  return {v(i, 0), v(i, 1), v(i, 2)};
+}
+template <class View>
+KOKKOS_INLINE_FUNCTION void storeVec3(const View& v, int i, const Vec3& a) {
+  v(i, 0) = a.x;
+  v(i, 1) = a.y;
+  v(i, 2) = a.z;
+}
+template <class View>
+KOKKOS_INLINE_FUNCTION SymMat3 loadSym(const View& v, int i) {
+  return {v(i, 0), v(i, 1), v(i, 2), v(i, 3), v(i, 4), v(i, 5)};
+}
+template <class View>
+KOKKOS_INLINE_FUNCTION void storeSym(const View& v, int i, const SymMat3& a) {
+  v(i, 0) = a.xx;
+  v(i, 1) = a.yy;
+  v(i, 2) = a.zz;
+  v(i, 3) = a.xy;
+  v(i, 4) = a.yz;
+  v(i, 5) = a.xz;
+}
+
+}  // namespace lagremap

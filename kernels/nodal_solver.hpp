@@ -1,0 +1,266 @@
+// Nodal solver and corner forces (DESIGN §3), in three kernels per stage:
+//   computeCornerTerms: per cell, reconstruct V and sigma at the nodes and build
+//                       the corner impedance M_cp = sum_f s_pf Q_cfp and
+//                       B_cp = M_cp V_c(p) - sigma_c(p) A_cp;
+//   nodalSolve:         per node, M_p V_p = B_p + external load under the
+//                       velocity constraints, then move the node;
+//   updateCells:        per cell, F_cp = M_cp V_p - B_cp, momentum and energy.
+// The node sums use the node->corner CRS by default (race-free, bit-for-bit
+// reproducible for any thread count); `Gather::Atomics` scatters instead.
+#pragma once
+
+#include "../src/mesh.hpp"
+#include "../src/state.hpp"
+#include "hex.hpp"
+#include "reconstruction.hpp"
+
+namespace lagremap {
+
+enum class Gather { Crs, Atomics };
+
+struct CornerControls {
+  int order = 2;                 // 1: piecewise constant, 2: limited linear reconstruction
+  Gather gather = Gather::Crs;
+};
+
+namespace detail {
+
+// Mirror image across a wall face: offset to the ghost centroid and the jump of
+// the velocity (normal component reversed); the pressure is continuous.
+KOKKOS_INLINE_FUNCTION void mirrorAcrossFace(const Vec3 x[8], int f, const Vec3& centroid,
+                                             const Vec3& velocity, Vec3& offset,
+                                             Vec3& velocity_jump) {
+  Vec3 q[4], w[4];
+  hex::faceNodes(x, f, q);
+  const Vec3 area = hex::faceCornerVectors(q, w);
+  const Vec3 normal = (1.0 / norm(area)) * area;
+  const Vec3 face_point = 0.25 * (q[0] + q[1] + q[2] + q[3]);
+  offset = (2.0 * dot(face_point - centroid, normal)) * normal;
+  velocity_jump = (-2.0 * dot(velocity, normal)) * normal;
+}
+
+}  // namespace detail
+
+inline void computeCornerTerms(const Mesh& mesh, const State& state,
+                               const CornerControls& controls) {
+  const auto cell_nodes = mesh.cell_nodes;
+  const auto neighbors = mesh.cell_neighbors;
+  const auto face_side = mesh.cell_face_side;
+  const auto side_kind = mesh.side_kind;
+  const auto x_n = mesh.x_n;
+  const auto s = state;
+  const bool second_order = controls.order >= 2;
+  const bool atomics = controls.gather == Gather::Atomics;
+  if (atomics) {
+    Kokkos::deep_copy(s.M_n, 0.0);
+    Kokkos::deep_copy(s.B_n, 0.0);
+  }
+  Kokkos::parallel_for(
+      "lagremap::corners::reconstruct_and_impedance",
+      Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells), KOKKOS_LAMBDA(const Index c) {
+        Vec3 x[8];
+        for (int p = 0; p < 8; ++p) x[p] = loadVec3(x_n, cell_nodes(c, p));
+        const Vec3 centroid = loadVec3(s.x_c, c);
+        const Vec3 v_cell = loadVec3(s.v_c, c);
+        const double p_cell = s.p_c(c);
+
+        // --- reconstruction of V and p at the cell's nodes (DESIGN §3, second order)
+        Vec3 v_node[8];
+        double p_node[8];
+        if (second_order) {
+          LeastSquares lsq;
+          Vec3 rhs_vx{0, 0, 0}, rhs_vy{0, 0, 0}, rhs_vz{0, 0, 0}, rhs_p{0, 0, 0};
+          Bounds vx(v_cell.x), vy(v_cell.y), vz(v_cell.z), pb(p_cell);
+          for (int f = 0; f < 6; ++f) {
+            const Index nb = neighbors(c, f);
+            Vec3 dx, dv;
+            double dp = 0.0;
+            if (nb >= 0) {
+              dx = loadVec3(s.x_c, nb) - centroid;
+              dv = loadVec3(s.v_c, nb) - v_cell;
+              dp = s.p_c(nb) - p_cell;
+            } else if (side_kind(face_side(c, f)) == int(BoundaryKind::Wall)) {
+              detail::mirrorAcrossFace(x, f, centroid, v_cell, dx, dv);
+            } else {
+              continue;
+            }
+            lsq.addOffset(dx);
+            rhs_vx += dv.x * dx;
+            rhs_vy += dv.y * dx;
+            rhs_vz += dv.z * dx;
+            rhs_p += dp * dx;
+            vx.include(v_cell.x + dv.x);
+            vy.include(v_cell.y + dv.y);
+            vz.include(v_cell.z + dv.z);
+            pb.include(p_cell + dp);
+          }
+          const SymMat3 inv = lsq.solver();
+          const Vec3 grad_vx = inv * rhs_vx, grad_vy = inv * rhs_vy, grad_vz = inv * rhs_vz;
+          const Vec3 grad_p = inv * rhs_p;
+          // Barth-Jespersen (beta = 1) per variable, over the 8 vertices.
+          double phi_vx = 1.0, phi_vy = 1.0, phi_vz = 1.0, phi_p = 1.0;
+          for (int p = 0; p < 8; ++p) {
+            const Vec3 d = x[p] - centroid;
+            phi_vx = math::fmin(phi_vx, vertexLimiter(dot(grad_vx, d), v_cell.x, vx, 1.0));
+            phi_vy = math::fmin(phi_vy, vertexLimiter(dot(grad_vy, d), v_cell.y, vy, 1.0));
+            phi_vz = math::fmin(phi_vz, vertexLimiter(dot(grad_vz, d), v_cell.z, vz, 1.0));
+            phi_p = math::fmin(phi_p, vertexLimiter(dot(grad_p, d), p_cell, pb, 1.0));
+          }
+          for (int p = 0; p < 8; ++p) {
+            const Vec3 d = x[p] - centroid;
+            v_node[p] = v_cell + Vec3{phi_vx * dot(grad_vx, d), phi_vy * dot(grad_vy, d),
+                                      phi_vz * dot(grad_vz, d)};
+            p_node[p] = p_cell + phi_p * dot(grad_p, d);
+          }
+        } else {
+          for (int p = 0; p < 8; ++p) {
+            v_node[p] = v_cell;
+            p_node[p] = p_cell;
+          }
+        }
+
+        // --- corner impedance: s_pf Q_cfp = rho [aL s n (x) n + aT s (I - n (x) n)]
+        const double rho_aL = s.rho_c(c) * s.aL_c(c);
+        const double rho_aT = s.rho_c(c) * s.aT_c(c);
+        SymMat3 impedance[8];
+        Vec3 corner_vec[8];
+        for (int p = 0; p < 8; ++p) {
+          impedance[p] = identitySym(0.0);
+          corner_vec[p] = Vec3{0, 0, 0};
+        }
+        for (int f = 0; f < 6; ++f) {
+          Vec3 q[4], w[4];
+          hex::faceNodes(x, f, q);
+          hex::faceCornerVectors(q, w);
+          for (int k = 0; k < 4; ++k) {
+            const int p = hex::faceNode(f, k);
+            corner_vec[p] += w[k];
+            const double area = norm(w[k]);
+            if (area > 0.0) {
+              impedance[p] += outerSelf(w[k], (rho_aL - rho_aT) / area);
+              impedance[p] += identitySym(rho_aT * area);
+            }
+          }
+        }
+        for (int p = 0; p < 8; ++p) {
+          const Index corner = 8 * c + p;
+          // B_cp = M_cp V_c(p) - sigma_c(p) A_cp with sigma = -p I
+          const Vec3 rhs = impedance[p] * v_node[p] + p_node[p] * corner_vec[p];
+          storeVec3(s.A_cp, corner, corner_vec[p]);
+          storeSym(s.M_cp, corner, impedance[p]);
+          storeVec3(s.B_cp, corner, rhs);
+          if (atomics) {
+            const Index node = cell_nodes(c, p);
+            const double m[6] = {impedance[p].xx, impedance[p].yy, impedance[p].zz,
+                                 impedance[p].xy, impedance[p].yz, impedance[p].xz};
+            for (int i = 0; i < 6; ++i) Kokkos::atomic_add(&s.M_n(node, i), m[i]);
+            Kokkos::atomic_add(&s.B_n(node, 0), rhs.x);
+            Kokkos::atomic_add(&s.B_n(node, 1), rhs.y);
+            Kokkos::atomic_add(&s.B_n(node, 2), rhs.z);
+          }
+        }
+      });
+}
+
+namespace detail {
+
+// P M P + (I - P): SPD when M is, and its solution with right-hand side P B
+// lies in the range of P and satisfies P (M V - B) = 0 (Lagrange multipliers).
+KOKKOS_INLINE_FUNCTION SymMat3 constrainedMatrix(const SymMat3& projector, const SymMat3& m) {
+  const double P[3][3] = {{projector.xx, projector.xy, projector.xz},
+                          {projector.xy, projector.yy, projector.yz},
+                          {projector.xz, projector.yz, projector.zz}};
+  const double M[3][3] = {{m.xx, m.xy, m.xz}, {m.xy, m.yy, m.yz}, {m.xz, m.yz, m.zz}};
+  double PM[3][3], A[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) PM[i][j] = P[i][0] * M[0][j] + P[i][1] * M[1][j] + P[i][2] * M[2][j];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      A[i][j] = PM[i][0] * P[0][j] + PM[i][1] * P[1][j] + PM[i][2] * P[2][j] + (i == j) - P[i][j];
+  return {A[0][0], A[1][1], A[2][2], A[0][1], A[1][2], A[0][2]};
+}
+
+}  // namespace detail
+
+// Solves every node and moves it: x_n = x_n0 + dt_stage V_n.
+inline void nodalSolve(const Mesh& mesh, const State& state, const CornerControls& controls,
+                       double dt_stage) {
+  const auto m = mesh;
+  const auto s = state;
+  const bool atomics = controls.gather == Gather::Atomics;
+  Kokkos::parallel_for(
+      atomics ? "lagremap::nodal_solve::atomics_sum" : "lagremap::nodal_solve::crs_gather",
+      Kokkos::RangePolicy<ExecSpace>(0, m.n_nodes), KOKKOS_LAMBDA(const Index n) {
+        SymMat3 impedance = identitySym(0.0);
+        Vec3 rhs{0, 0, 0};
+        if (atomics) {
+          impedance = loadSym(s.M_n, n);
+          rhs = loadVec3(s.B_n, n);
+        } else {
+          for (Index i = m.node_corner_offsets(n); i < m.node_corner_offsets(n + 1); ++i) {
+            const Index corner = m.node_corners(i);
+            impedance += loadSym(s.M_cp, corner);
+            rhs += loadVec3(s.B_cp, corner);
+          }
+        }
+        // External load of traction faces: sum_bf s_pf sigma^b n_pf.
+        Vec3 load{0, 0, 0};
+        for (Index i = m.node_traction_offsets(n); i < m.node_traction_offsets(n + 1); ++i) {
+          const Index face_id = m.node_traction_faces(i);
+          const Index c = face_id / 6;
+          const int f = face_id % 6;
+          Vec3 q[4], w[4];
+          int local = 0;
+          for (int k = 0; k < 4; ++k) {
+            const Index node = m.cell_nodes(c, hex::faceNode(f, k));
+            q[k] = loadVec3(m.x_n, node);
+            if (node == n) local = k;
+          }
+          hex::faceCornerVectors(q, w);
+          const int side = m.cell_face_side(c, f);
+          const SymMat3 sigma_b{m.side_traction(side, 0), m.side_traction(side, 1),
+                                m.side_traction(side, 2), m.side_traction(side, 3),
+                                m.side_traction(side, 4), m.side_traction(side, 5)};
+          load += sigma_b * w[local];
+        }
+        Vec3 velocity;
+        if (m.node_constrained(n)) {
+          const SymMat3 projector = loadSym(m.node_projector, n);
+          velocity = projector * (inverse(detail::constrainedMatrix(projector, impedance)) *
+                                  (projector * (rhs + load)));
+        } else {
+          velocity = inverse(impedance) * (rhs + load);
+        }
+        storeVec3(s.v_n, n, velocity);
+        // sum_c F_cp = M_p V_p - B_p: the wall reaction plus the traction load.
+        storeVec3(s.f_ext_n, n, impedance * velocity - rhs);
+        storeVec3(m.x_n, n, loadVec3(s.x_n0, n) + dt_stage * velocity);
+      });
+}
+
+// Corner forces and the cell update from the start-of-step state (DESIGN §3):
+//   m_c dV_c/dt = sum_p F_cp,  m_c dE_c/dt = sum_p F_cp . V_p.
+inline void updateCells(const Mesh& mesh, const State& state, double dt_stage) {
+  const auto cell_nodes = mesh.cell_nodes;
+  const auto s = state;
+  Kokkos::parallel_for(
+      "lagremap::cell_update::corner_forces", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
+      KOKKOS_LAMBDA(const Index c) {
+        Vec3 force{0, 0, 0};
+        double power = 0.0, dvdt = 0.0;
+        for (int p = 0; p < 8; ++p) {
+          const Index corner = 8 * c + p;
+          const Vec3 v_node = loadVec3(s.v_n, cell_nodes(c, p));
+          const Vec3 f_corner = loadSym(s.M_cp, corner) * v_node - loadVec3(s.B_cp, corner);
+          force += f_corner;
+          power += dot(f_corner, v_node);
+          dvdt += dot(loadVec3(s.A_cp, corner), v_node);
+        }
+        const double dt_over_m = dt_stage / s.m_c(c);
+        storeVec3(s.v_c, c, loadVec3(s.v_c0, c) + dt_over_m * force);
+        s.E_c(c) = s.E_c0(c) + dt_over_m * power;
+        s.dvdt_c(c) = dvdt;
+      });
+}
+
+}  // namespace lagremap

@@ -1,0 +1,75 @@
+#include "../kernels/hex.hpp"
+#include "../src/problem.hpp"
+
+namespace lagremap {
+
+extern const Problem kSodProblem;
+extern const Problem kSedovProblem;
+
+const std::vector<Problem>& problemRegistry() {
+  static const std::vector<Problem> problems = {kSodProblem, kSedovProblem};
+  return problems;
+}
+
+const Problem& findProblem(const std::string& name) {
+  std::string known;
+  for (const auto& problem : problemRegistry()) {
+    if (name == problem.name) return problem;
+    known += (known.empty() ? "" : ", ") + std::string(problem.name);
+  }
+  throw ConfigError("unknown problem '" + name + "' (known: " + known + ")");
+}
+
+bool Check::pass() const {
+  return std::isfinite(value) && std::abs(value - reference) <= tolerance;
+}
+
+void declareMeshKeys(Config& config, int nx, int ny, int nz) {
+  config.addInteger("mesh.nx", nx, "cells along x", true);
+  config.addInteger("mesh.ny", ny, "cells along y", true);
+  config.addInteger("mesh.nz", nz, "cells along z", true);
+}
+
+void declareBoundaryKeys(Config& config, const std::array<const char*, kNumSides>& defaults) {
+  for (int side = 0; side < kNumSides; ++side) {
+    config.addChoice(std::string("bc.") + sideName(side), defaults[side],
+                     {"free", "wall", "symmetry", "fixed", "traction"},
+                     std::string("boundary condition on the ") + sideName(side) + " side");
+  }
+}
+
+SideBoundaries readBoundaries(const Config& config) {
+  SideBoundaries boundaries;
+  for (int side = 0; side < kNumSides; ++side) {
+    const std::string key = std::string("bc.") + sideName(side);
+    boundaries[side].kind = parseBoundaryKind(key, config.text(key));
+    if (boundaries[side].kind == BoundaryKind::Traction) {
+      const std::string prefix = key + ".sigma_";
+      if (!config.has(prefix + "xx")) {
+        throw ConfigError("side " + std::string(sideName(side)) +
+                          " has a traction condition but this problem declares no " + prefix +
+                          "* keys");
+      }
+      SymMat3& s = boundaries[side].traction_stress;
+      s = {config.real(prefix + "xx"), config.real(prefix + "yy"), config.real(prefix + "zz"),
+           config.real(prefix + "xy"), config.real(prefix + "yz"), config.real(prefix + "xz")};
+    }
+  }
+  return boundaries;
+}
+
+void hostCellShapes(const HostMesh& mesh, std::vector<double>& volume,
+                    std::vector<Vec3>& centroid) {
+  const Index n_cells = Index(mesh.cell_nodes.extent(0));
+  volume.resize(n_cells);
+  centroid.resize(n_cells);
+  for (Index c = 0; c < n_cells; ++c) {
+    Vec3 x[8];
+    for (int p = 0; p < 8; ++p) x[p] = loadVec3(mesh.x_n, mesh.cell_nodes(c, p));
+    const hex::CellShape shape = hex::cellShape(x);
+    volume[c] = shape.volume;
+    centroid[c] = shape.centroid;
+  }
+}
+
+}  // namespace lagremap

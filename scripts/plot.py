@@ -1,0 +1,548 @@
+#!/usr/bin/python3
+"""Draw PNG figures from a lagremap run directory.
+
+Usage:
+    scripts/plot.py DIR [--out OUTDIR] [--show-list]
+
+DIR is a lagremap output directory.  It must hold ``summary.json``; every
+other input (history.csv, sod_profile.csv, radial.csv, slice_z.csv) is
+optional, and a plot whose input is missing is skipped silently, so the
+script works on partial runs, quick runs with output switched off, and
+directories copied around without their large CSV files.
+
+For every PNG written the script prints its path, one per line, on stdout,
+so callers (CI, the regression scripts) can collect the figures without
+knowing which ones a given problem produces.  ``--show-list`` prints the
+plots this directory supports instead of drawing them.
+
+Exit status: 0 on success; 1 if some input file was present but could not be
+plotted (a warning names it on stderr, the other plots are still drawn);
+2 if DIR does not exist or holds no readable summary.json.
+
+All quantities are taken to be SI, because that is what the C++ code writes.
+"""
+
+import argparse
+import csv
+import json
+import math
+import os
+import sys
+from dataclasses import dataclass
+from functools import partial
+from typing import Callable, Dict, List, Optional, Tuple
+
+import numpy as np
+import matplotlib
+
+matplotlib.use("Agg")  # never needs a display: runs in CI and over ssh
+import matplotlib.pyplot as plt  # noqa: E402  (must follow matplotlib.use)
+from matplotlib.lines import Line2D  # noqa: E402
+from matplotlib.tri import Triangulation  # noqa: E402
+
+DPI = 120
+EXIT_PLOT_FAILED = 1
+EXIT_BAD_DIR = 2
+
+# Axis labels with SI units, shared by every plot that shows the quantity so
+# the same field is labelled the same way in every figure.
+LABELS = {
+    "x": "x [m]",
+    "y": "y [m]",
+    "r": "r [m]",
+    "t": "t [s]",
+    "dt": "Δt [s]",
+    "rho": "density ρ [kg/m³]",
+    "u": "velocity u [m/s]",
+    "p": "pressure p [Pa]",
+    "e": "specific internal energy e [J/kg]",
+    "speed": "speed |u| [m/s]",
+}
+
+# Fixed colours per time-step limiter, so the same reason has the same colour
+# in every run and runs can be compared side by side.  Unknown reasons (the
+# C++ side may add some) get the remaining colours of the default cycle.
+DT_REASON_COLOURS = {
+    "cfl": "tab:blue",
+    "volume": "tab:orange",
+    "growth": "tab:green",
+    "end": "tab:red",
+    "initial": "tab:purple",
+}
+SPARE_COLOURS = ["tab:brown", "tab:pink", "tab:olive", "tab:cyan", "tab:gray"]
+
+
+class InputError(Exception):
+    """An input file exists but its contents cannot be plotted."""
+
+
+# --------------------------------------------------------------------------
+# Input
+# --------------------------------------------------------------------------
+
+def read_csv(path: str) -> Dict[str, np.ndarray]:
+    """Read a CSV with a header row into {column name: array}.
+
+    Columns that parse as numbers become float arrays (C++ streams may write
+    ``nan``, ``-nan`` or ``inf``, which Python's float() accepts); any other
+    column, e.g. history's dt_reason, stays an array of stripped strings.
+    The csv module is used instead of np.genfromtxt because it is several
+    times faster on the ~250k-row radial files and handles mixed types.
+    """
+    with open(path, newline="") as f:
+        rows = [r for r in csv.reader(f) if r and any(c.strip() for c in r)]
+    if not rows:
+        raise InputError(f"{path}: empty file (no header)")
+    header = [h.strip() for h in rows[0]]
+    body = rows[1:]
+    for lineno, row in enumerate(body, start=2):
+        if len(row) != len(header):
+            raise InputError(f"{path}:{lineno}: {len(row)} fields, header has "
+                             f"{len(header)}")
+    columns = {}
+    for i, name in enumerate(header):
+        values = [row[i].strip() for row in body]
+        try:
+            columns[name] = np.array([float(v) for v in values], dtype=float)
+        except ValueError:
+            columns[name] = np.array(values, dtype=str)
+    return columns
+
+
+def require(table: Dict[str, np.ndarray], names: List[str], path: str) -> None:
+    """Fail with a clear message if a CSV lacks a column a plot needs.
+
+    The formats are fixed by the C++ writer; a missing column means the two
+    sides disagree, which should be reported rather than silently skipped.
+    """
+    missing = [n for n in names if n not in table]
+    if missing:
+        raise InputError(f"{os.path.basename(path)}: missing column(s) "
+                         f"{', '.join(missing)}")
+    if len(table[names[0]]) == 0:
+        raise InputError(f"{os.path.basename(path)}: header only, no data rows")
+
+
+class Run:
+    """A run directory: its summary plus lazily read, cached CSV files.
+
+    Caching matters because radial.csv (up to ~250k rows) feeds two figures
+    and should be parsed once.
+    """
+
+    def __init__(self, directory: str, summary: dict):
+        self.dir = directory
+        self.summary = summary
+        self._tables: Dict[str, Dict[str, np.ndarray]] = {}
+
+    def path(self, name: str) -> str:
+        return os.path.join(self.dir, name)
+
+    def has(self, name: str) -> bool:
+        return os.path.isfile(self.path(name))
+
+    def table(self, name: str, columns: List[str]) -> Dict[str, np.ndarray]:
+        if name not in self._tables:
+            self._tables[name] = read_csv(self.path(name))
+        table = self._tables[name]
+        require(table, columns, self.path(name))
+        return table
+
+    def check(self, name: str) -> Optional[dict]:
+        """Return summary["checks"][name] if it is a dict, else None."""
+        c = (self.summary.get("checks") or {}).get(name)
+        return c if isinstance(c, dict) else None
+
+
+def load_run(directory: str) -> Run:
+    """Open DIR or exit 2 with a one-line message.
+
+    summary.json is the marker of a lagremap run directory and carries the
+    problem name that selects the plots, so without it nothing can be done.
+    """
+    if not os.path.isdir(directory):
+        fail(f"{directory}: no such directory")
+    summary_path = os.path.join(directory, "summary.json")
+    if not os.path.isfile(summary_path):
+        fail(f"{directory}: no summary.json (not a lagremap output directory?)")
+    try:
+        with open(summary_path) as f:
+            summary = json.load(f)
+    except (OSError, ValueError) as exc:
+        fail(f"{summary_path}: unreadable: {' '.join(str(exc).split())}")
+    if not isinstance(summary, dict):
+        fail(f"{summary_path}: top level is not a JSON object")
+    return Run(directory, summary)
+
+
+def fail(message: str) -> None:
+    """Print a one-line error and exit 2 (the documented bad-input status)."""
+    print(f"plot.py: error: {message}", file=sys.stderr)
+    sys.exit(EXIT_BAD_DIR)
+
+
+# --------------------------------------------------------------------------
+# Formatting helpers
+# --------------------------------------------------------------------------
+
+def fmt_num(value, spec: str = ".3g") -> str:
+    """Format a number from JSON, tolerating absent or non-numeric values."""
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        return format(value, spec)
+    return "?"
+
+
+def run_title(run: Run, what: str) -> str:
+    """Common first title line, so every figure says which run it shows."""
+    s = run.summary
+    parts = [str(s.get("problem", "?"))]
+    if "mode" in s:
+        parts.append(str(s["mode"]))
+    if "order" in s:
+        parts.append(f"order {s['order']}")
+    if "cells" in s:
+        parts.append(f"{s['cells']} cells")
+    if "t_end" in s:
+        parts.append(f"t = {fmt_num(s['t_end'])} s")
+    return f"{what}: " + ", ".join(parts)
+
+
+def check_text(check: Optional[dict], label: str) -> Optional[str]:
+    """Describe a summary check as 'label = v (tolerance t, PASS)'."""
+    if check is None or "value" not in check:
+        return None
+    text = f"{label} = {fmt_num(check['value'], '.3e')}"
+    extras = []
+    if "tolerance" in check:
+        extras.append(f"tolerance {fmt_num(check['tolerance'], '.2e')}")
+    if "pass" in check:
+        extras.append("PASS" if check["pass"] else "FAIL")
+    return text + (f" ({', '.join(extras)})" if extras else "")
+
+
+def save(fig, out_path: str) -> str:
+    """Write the figure at the project-wide DPI and free its memory."""
+    fig.savefig(out_path, dpi=DPI)
+    plt.close(fig)
+    return out_path
+
+
+# --------------------------------------------------------------------------
+# Problem-specific plots
+# --------------------------------------------------------------------------
+
+def plot_sod_profiles(run: Run, out_path: str) -> str:
+    """Sod shock tube: numeric vs exact density, velocity, pressure, energy.
+
+    Numeric values are markers and the exact Riemann solution a line, so
+    over- and undershoots at the shock and contact, and the smearing width,
+    are visible per cell.  The L1 density error from the summary goes in the
+    title because it is the number the regression check judges.
+    """
+    name = "sod_profile.csv"
+    fields = ["rho", "u", "p", "e"]
+    t = run.table(name, ["x"] + fields)
+    order = np.argsort(t["x"], kind="stable")
+    x = t["x"][order]
+
+    fig, axes = plt.subplots(2, 2, figsize=(11, 8), sharex=True)
+    for ax, field in zip(axes.flat, fields):
+        exact = t.get(f"{field}_exact")
+        if exact is not None and exact.dtype.kind == "f":
+            ax.plot(x, exact[order], "-", color="black", lw=1.2,
+                    label="exact", zorder=1)
+        ax.plot(x, t[field][order], "o", ms=3, mfc="none", mew=0.8,
+                color="tab:blue", label="lagremap", zorder=2)
+        ax.set_ylabel(LABELS[field])
+        ax.grid(alpha=0.3)
+        ax.legend(loc="best", fontsize="small")
+    for ax in axes[-1]:
+        ax.set_xlabel(LABELS["x"])
+
+    title = run_title(run, "Sod shock tube")
+    l1 = check_text(run.check("l1_density"), "L1 density error")
+    if l1:
+        title += "\n" + l1
+    fig.suptitle(title)
+    fig.tight_layout()
+    return save(fig, out_path)
+
+
+# --------------------------------------------------------------------------
+# Generic plots (drawn for any problem whose run wrote the input file)
+# --------------------------------------------------------------------------
+
+def plot_radial(run: Run, out_path: str, field: str) -> str:
+    """Scatter of one field against radius, one point per cell.
+
+    Every cell is drawn (not a binned average) because the spread at a given
+    radius is exactly what shows mesh imprinting and loss of symmetry.  The
+    shock radius lines show at a glance whether the blast wave is where the
+    similarity solution says and where the check measured it.
+    """
+    name = "radial.csv"
+    t = run.table(name, ["r", field])
+    r, v = t["r"], t[field]
+    n = len(r)
+    # Dense data needs faint points or the profile becomes a solid blob;
+    # sparse data needs opaque ones to be visible at all.
+    alpha = float(np.clip(3000.0 / max(n, 1), 0.05, 0.8))
+    size = 4.0 if n < 20000 else 1.0
+
+    fig, ax = plt.subplots(figsize=(8, 5.5))
+    ax.scatter(r, v, s=size, alpha=alpha, color="tab:blue", linewidths=0,
+               rasterized=True)
+    # Proxy handle: the real points are too faint to read in a legend.
+    handles = [Line2D([], [], ls="", marker="o", ms=4, color="tab:blue",
+                      label=f"cells ({n})")]
+
+    shock = run.check("shock_radius")
+    if shock:
+        ref, val = shock.get("reference"), shock.get("value")
+        if isinstance(ref, (int, float)):
+            handles.append(ax.axvline(ref, color="black", ls="--", lw=1.2,
+                                      label=f"reference shock radius "
+                                            f"{fmt_num(ref, '.4g')} m"))
+        if isinstance(val, (int, float)):
+            handles.append(ax.axvline(val, color="tab:red", ls="-", lw=1.2,
+                                      label=f"measured shock radius "
+                                            f"{fmt_num(val, '.4g')} m"))
+
+    ax.set_xlabel(LABELS["r"])
+    ax.set_ylabel(LABELS[field])
+    ax.set_xlim(left=0.0)
+    ax.grid(alpha=0.3)
+    ax.legend(handles=handles, loc="best", fontsize="small")
+    ax.set_title(run_title(run, f"Radial {field_word(field)}"))
+    fig.tight_layout()
+    return save(fig, out_path)
+
+
+def field_word(field: str) -> str:
+    return {"rho": "density", "p": "pressure"}.get(field, field)
+
+
+def triangulate_points(x: np.ndarray, y: np.ndarray) -> Triangulation:
+    """Delaunay triangulation of cell centroids, with spurious hull slivers cut.
+
+    After mesh motion the slice is not a rectangle: Delaunay fills the convex
+    hull, so any concave part of the domain boundary gets bridged by long
+    thin triangles that paint data where there is no material.  Triangles on
+    the hull whose longest edge is far above the typical edge length are
+    peeled off a few times; interior triangles are never masked, so strongly
+    compressed or stretched zones (shells, voids) stay filled.
+    """
+    tri = Triangulation(x, y)
+    tris = tri.triangles
+    p = np.column_stack([x, y])
+    edges = np.stack([
+        np.linalg.norm(p[tris[:, 0]] - p[tris[:, 1]], axis=1),
+        np.linalg.norm(p[tris[:, 1]] - p[tris[:, 2]], axis=1),
+        np.linalg.norm(p[tris[:, 2]] - p[tris[:, 0]], axis=1),
+    ], axis=1)
+    longest = edges.max(axis=1)
+    limit = 4.0 * np.median(longest)
+    mask = np.zeros(len(tris), dtype=bool)
+    for _ in range(10):
+        tri.set_mask(mask)
+        on_hull = (tri.neighbors == -1).any(axis=1) & ~mask
+        peel = on_hull & (longest > limit)
+        if not peel.any():
+            break
+        mask |= peel
+    tri.set_mask(mask)
+    return tri
+
+
+def plot_slice_fields(run: Run, out_path: str) -> str:
+    """Density and pressure maps of the cell layer nearest z = 0.
+
+    Drawn on a triangulation of the centroids rather than an image grid
+    because after Lagrangian motion the cells are no longer on a lattice;
+    equal aspect keeps circles circular, so asymmetry is real, not an
+    artefact of the axes.
+    """
+    name = "slice_z.csv"
+    fields = ["rho", "p"]
+    t = run.table(name, ["x", "y"] + fields)
+    x, y = t["x"], t["y"]
+
+    fig, axes = plt.subplots(1, 2, figsize=(12, 5.4))
+    try:
+        tri = triangulate_points(x, y)
+    except (ValueError, RuntimeError):
+        tri = None  # fewer than 3 points or all collinear: fall back below
+    for ax, field in zip(axes, fields):
+        v = t[field]
+        if tri is not None:
+            art = ax.tripcolor(tri, v, shading="gouraud", cmap="viridis")
+        else:
+            art = ax.scatter(x, y, c=v, s=12, cmap="viridis")
+        fig.colorbar(art, ax=ax, label=LABELS[field], shrink=0.9)
+        ax.set_aspect("equal")
+        ax.set_xlabel(LABELS["x"])
+        ax.set_ylabel(LABELS["y"])
+        ax.set_title(field_word(field).capitalize())
+    fig.suptitle(run_title(run, f"Slice nearest z = 0 ({len(x)} cells)"))
+    fig.tight_layout()
+    return save(fig, out_path)
+
+
+def relative_drift(q: np.ndarray) -> Tuple[np.ndarray, bool]:
+    """(q - q0) / |q0|, or q - q0 if q0 is 0; the flag says which.
+
+    Relative drift is what is comparable between problems of different
+    scale; a zero initial value (possible for a quantity the C++ side adds
+    later) would make it undefined, so fall back to the absolute drift.
+    """
+    q0 = q[0]
+    if q0 != 0 and math.isfinite(q0):
+        return (q - q0) / abs(q0), True
+    return q - q0, False
+
+
+def plot_history(run: Run, out_path: str) -> str:
+    """Time step per reason, and conservation drift, over the run.
+
+    The top panel shows which limiter controls Δt when (a run stuck on
+    'volume' or 'growth' points at a problem); the bottom one shows the
+    drift of total energy and mass, which a Lagrangian scheme should keep at
+    round-off.  Symlog keeps exact zeros (mass in pure Lagrange mode) and
+    the sign of the drift visible while still spanning many decades.
+    """
+    name = "history.csv"
+    t = run.table(name, ["t", "dt", "dt_reason", "mass", "total_energy"])
+    time, dt = t["t"], t["dt"]
+    reasons = np.array([str(r).strip() for r in t["dt_reason"]])
+
+    fig, (ax_dt, ax_drift) = plt.subplots(2, 1, figsize=(9, 8), sharex=True)
+
+    ax_dt.plot(time, dt, "-", color="0.75", lw=0.8, zorder=1)
+    spare = iter(SPARE_COLOURS * 10)
+    for reason in sorted(set(reasons), key=lambda s: (s not in DT_REASON_COLOURS, s)):
+        sel = reasons == reason
+        colour = DT_REASON_COLOURS.get(reason) or next(spare)
+        ax_dt.scatter(time[sel], dt[sel], s=10, color=colour, zorder=2,
+                      label=f"{reason} ({int(sel.sum())} steps)")
+    if np.any(dt > 0):
+        ax_dt.set_yscale("log")
+    ax_dt.set_ylabel(LABELS["dt"])
+    ax_dt.grid(alpha=0.3, which="both")
+    ax_dt.legend(title="Δt limited by", fontsize="small", loc="best")
+    ax_dt.set_title("Time step")
+
+    all_relative = True
+    for field, label, colour in (("total_energy", "total energy", "tab:red"),
+                                 ("mass", "mass", "tab:blue")):
+        drift, relative = relative_drift(t[field])
+        all_relative &= relative
+        ax_drift.plot(time, drift, "-", lw=1.2, color=colour,
+                      label=label if relative else f"{label} (absolute)")
+    # Below ~1e-16 relative drift is round-off: plot that band linearly.
+    ax_drift.set_yscale("symlog", linthresh=1e-16, linscale=0.5)
+    ax_drift.axhline(0.0, color="0.5", lw=0.6)
+    ax_drift.set_xlabel(LABELS["t"])
+    ax_drift.set_ylabel("relative drift (q − q₀)/|q₀|" if all_relative
+                        else "drift q − q₀")
+    ax_drift.grid(alpha=0.3, which="major")
+    ax_drift.legend(fontsize="small", loc="best")
+    ax_drift.set_title("Conservation drift")
+
+    s = run.summary
+    title = run_title(run, "History")
+    perf = []
+    if "steps" in s:
+        perf.append(f"{s['steps']} steps")
+    if "wall_seconds" in s:
+        perf.append(f"wall {fmt_num(s['wall_seconds'])} s")
+    total = (s.get("cell_steps_per_second") or {}).get("total") \
+        if isinstance(s.get("cell_steps_per_second"), dict) else None
+    if total is not None:
+        perf.append(f"{fmt_num(total, '.3e')} cell-steps/s")
+    if perf:
+        title += "\n" + ", ".join(perf)
+    fig.suptitle(title)
+    fig.tight_layout()
+    return save(fig, out_path)
+
+
+# --------------------------------------------------------------------------
+# Dispatch
+# --------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Plot:
+    """One output figure: its file name, the input it needs, how to draw it."""
+    output: str
+    source: str
+    draw: Callable[[Run, str], str]
+
+
+# Plots that only make sense for one problem, keyed by summary["problem"].
+PROBLEM_PLOTS: Dict[str, List[Plot]] = {
+    "sod": [Plot("sod_profiles.png", "sod_profile.csv", plot_sod_profiles)],
+}
+
+# Plots drawn for any problem, as long as the run wrote their input: radial
+# output is written by every radially symmetric problem (sedov, noh, ...) and
+# the slice by every 3D one, so keying them on the file keeps new problems
+# plotted without touching this script.
+GENERIC_PLOTS: List[Plot] = [
+    Plot("radial_density.png", "radial.csv", partial(plot_radial, field="rho")),
+    Plot("radial_pressure.png", "radial.csv", partial(plot_radial, field="p")),
+    Plot("slice_fields.png", "slice_z.csv", plot_slice_fields),
+    Plot("history.png", "history.csv", plot_history),
+]
+
+
+def plots_for(run: Run) -> List[Plot]:
+    """The candidate plots for this run: problem-specific first, then generic."""
+    problem = str(run.summary.get("problem", ""))
+    return PROBLEM_PLOTS.get(problem, []) + GENERIC_PLOTS
+
+
+def main(argv: Optional[List[str]] = None) -> int:
+    parser = argparse.ArgumentParser(
+        description="Draw PNG figures from a lagremap output directory; "
+                    "prints the path of each PNG written.")
+    parser.add_argument("dir", metavar="DIR", help="lagremap output directory")
+    parser.add_argument("--out", metavar="OUTDIR",
+                        help="write PNGs here instead of DIR (created if needed)")
+    parser.add_argument("--show-list", action="store_true",
+                        help="list the plots for DIR (output, input, whether "
+                             "the input is present) and draw nothing")
+    args = parser.parse_args(argv)
+
+    run = load_run(args.dir)
+    out_dir = args.out or args.dir
+    candidates = plots_for(run)
+
+    if args.show_list:
+        for plot in candidates:
+            state = "available" if run.has(plot.source) else "missing-input"
+            print(f"{os.path.join(out_dir, plot.output)}\t{plot.source}\t{state}")
+        return 0
+
+    todo = [p for p in candidates if run.has(p.source)]
+    if todo:
+        try:
+            os.makedirs(out_dir, exist_ok=True)
+        except OSError as exc:
+            fail(f"{out_dir}: cannot create output directory: {exc.strerror}")
+
+    status = 0
+    for plot in todo:
+        try:
+            written = plot.draw(run, os.path.join(out_dir, plot.output))
+        except (InputError, OSError, ValueError) as exc:
+            plt.close("all")
+            print(f"plot.py: warning: {plot.output} skipped: {exc}",
+                  file=sys.stderr)
+            status = EXIT_PLOT_FAILED
+            continue
+        print(written, flush=True)
+    return status
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,27 @@
+// Boundary conditions per side of the generated block (DESIGN §3, nodal solver).
+#pragma once
+
+#include <array>
+#include <string>
+
+#include "../kernels/math.hpp"
+
+namespace lagremap {
+
+enum class BoundaryKind { Free, Wall, Fixed, Traction };
+
+// `symmetry` is the same condition as `wall` (zero normal velocity, slip).
+struct BoundaryCondition {
+  BoundaryKind kind = BoundaryKind::Wall;
+  SymMat3 traction_stress{0, 0, 0, 0, 0, 0};  // Cauchy stress sigma^b, tension positive
+};
+
+constexpr int kNumSides = 6;  // x-, x+, y-, y+, z-, z+ of the block
+using SideBoundaries = std::array<BoundaryCondition, kNumSides>;
+
+const char* sideName(int side);  // "xmin", "xmax", ...
+// Parses "free" | "wall" | "symmetry" | "fixed" | "traction"; throws ConfigError otherwise.
+BoundaryKind parseBoundaryKind(const std::string& key, const std::string& text);
+const char* boundaryKindName(BoundaryKind kind);
+
+}  // namespace lagremap

@@ -1,0 +1,147 @@
+#include "cli.hpp"
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <iostream>
+
+#include "run.hpp"
+#include "timers.hpp"
+
+namespace lagremap {
+namespace {
+
+constexpr int kExitChecksFailed = 1;
+constexpr int kExitBadInput = 2;
+constexpr int kExitRunFailed = 3;
+
+int badInput(const std::string& message) {
+  std::fprintf(stderr, "lagremap: error: %s\n", message.c_str());
+  return kExitBadInput;
+}
+
+void printReport(const RunOptions& options, const RunResult& result) {
+  std::printf("lagremap: %s (%s, order %s), %ld cells, %ld steps, t = %.6g, %.3f s\n",
+              options.problem.c_str(), options.mode.c_str(),
+              options.config.text("numerics.order").c_str(), result.cells, result.steps,
+              result.time, result.wall_seconds);
+  std::printf("drift (relative, boundary work subtracted): mass %.2e  momentum %.2e  energy %.2e\n",
+              result.drift_mass, result.drift_momentum, result.drift_energy);
+  for (const auto& check : result.checks) {
+    std::printf("check %-22s %-13.6g reference %-12.6g tolerance %-10.3g %s\n", check.name.c_str(),
+                check.value, check.reference, check.tolerance, check.pass() ? "pass" : "FAIL");
+  }
+  std::printf("FOM: %.4g cell-steps/s (%s, %d threads)\n", result.cell_steps_per_second,
+              ExecSpace::name(), int(ExecSpace().concurrency()));
+}
+
+}  // namespace
+
+int runCommandLine(int argc, char* argv[]) {
+  CLI::App app{
+      "lagremap: 3D cell-centred Lagrangian (and Lagrange-Remap) multi-material dynamics.\n"
+      "Kokkos options (--kokkos-threads=N, ...) are accepted too.",
+      "lagremap"};
+  std::string problem_name, mode = "lagrange", input, output;
+  double scale = 1.0, t_end = 0.0, cfl = 0.0;
+  int order = 0;
+  long output_every = 0;
+  std::vector<std::string> assignments;
+  std::vector<double> output_times;
+  bool quiet = false, list = false, print_config = false;
+  app.add_option("--problem", problem_name, "problem to run (see --list)");
+  app.add_option("--mode", mode, "lagrange (pure Lagrangian) or remap (Lagrange-Remap)")
+      ->check(CLI::IsMember({"lagrange", "remap"}));
+  app.add_option("--scale", scale, "multiply every cell count by S")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--t-end", t_end, "final time [s]")->check(CLI::PositiveNumber);
+  app.add_option("--cfl", cfl, "CFL number")->check(CLI::Range(1e-6, 1.0));
+  app.add_option("--order", order, "1 or 2")->check(CLI::IsMember({1, 2}));
+  app.add_option("--set", assignments, "set a problem or numerics key: --set key=value")
+      ->allow_extra_args(false);
+  app.add_option("--input", input, "TOML input deck (tables become dotted keys)")
+      ->check(CLI::ExistingFile);
+  app.add_option("--output", output, "output directory (default out/<problem>)");
+  app.add_option("--output-times", output_times, "snapshot times, comma separated [s]")
+      ->delimiter(',');
+  app.add_option("--output-every", output_every, "snapshot every N steps")
+      ->check(CLI::NonNegativeNumber);
+  app.add_flag("--quiet", quiet, "no progress line");
+  app.add_flag("--list", list, "list the built-in problems");
+  app.add_flag("--print-config", print_config,
+               "print every key of the problem with its value, unit and help");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& help) {
+    return app.exit(help);
+  } catch (const CLI::ParseError& error) {
+    std::string message = error.what();
+    for (auto& ch : message)
+      if (ch == '\n') ch = ' ';
+    return badInput(message);
+  }
+
+  if (list) {
+    for (const auto& problem : problemRegistry()) {
+      std::printf("%-10s %s\n", problem.name, problem.description);
+    }
+    return 0;
+  }
+
+  RunOptions options;
+  try {
+    // The deck may name the problem and mode; the command line wins.
+    std::string deck_problem, deck_mode;
+    if (!input.empty() && problem_name.empty()) {
+      Config probe;
+      try {
+        probe.loadDeck(input, &deck_problem, &deck_mode);
+      } catch (const ConfigError&) {
+        // unknown keys are reported below, once the problem's keys are known
+      }
+      problem_name = deck_problem;
+    }
+    if (problem_name.empty()) return badInput("--problem is required (see --list)");
+    const Problem& problem = findProblem(problem_name);
+    options.problem = problem.name;
+    options.config = declareConfig(problem);
+    if (!input.empty()) {
+      options.config.loadDeck(input, &deck_problem, &deck_mode);
+      if (!deck_problem.empty() && deck_problem != problem_name) {
+        return badInput("input deck '" + input + "' is for problem '" + deck_problem +
+                        "', not '" + problem_name + "'");
+      }
+      if (!deck_mode.empty() && app.count("--mode") == 0) mode = deck_mode;
+    }
+    for (const auto& assignment : assignments) options.config.setAssignment(assignment);
+    if (app.count("--t-end")) options.config.set("t_end", std::to_string(t_end));
+    if (app.count("--cfl")) options.config.set("numerics.cfl", std::to_string(cfl));
+    if (app.count("--order")) options.config.set("numerics.order", std::to_string(order));
+    options.config.scaleCellCounts(scale);
+    if (print_config) {
+      std::printf("# problem %s: every settable key (--set key=value, or in a TOML deck)\n%s",
+                  problem.name, options.config.printable().c_str());
+      return 0;
+    }
+    options.mode = mode;
+    options.output_dir = output.empty() ? "out/" + options.problem : output;
+    options.output_times = output_times;
+    options.output_every = output_every;
+    options.quiet = quiet;
+
+    const RunResult result = runProblem(options);
+    if (result.failed) {
+      std::fprintf(stderr, "lagremap: run failed: %s; last good state (t = %.6g) written to %s\n",
+                   result.failure.c_str(), result.time, options.output_dir.c_str());
+      return kExitRunFailed;
+    }
+    printReport(options, result);
+    return result.checksPass() ? 0 : kExitChecksFailed;
+  } catch (const ConfigError& error) {
+    return badInput(error.what());
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "lagremap: error: %s\n", error.what());
+    return kExitRunFailed;
+  }
+}
+
+}  // namespace lagremap

@@ -1,0 +1,10 @@
+// The command line (STYLE §10): long options with help text, no positional
+// arguments. Returns the process exit code:
+//   0 success, 1 a problem check failed, 2 bad input, 3 the run failed mid-way.
+#pragma once
+
+namespace lagremap {
+
+int runCommandLine(int argc, char* argv[]);
+
+}  // namespace lagremap

@@ -1,0 +1,72 @@
+// Run-time parameters: every settable key of a problem with its default, unit
+// and help text, in the form `--set key=value` and the TOML deck accept.
+#pragma once
+
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace lagremap {
+
+// Bad user input (option, key, value, deck). The driver prints the message on
+// one line and exits with code 2.
+struct ConfigError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+enum class ParamType { Real, Integer, Text, Choice, Boolean };
+
+struct Param {
+  std::string key;
+  ParamType type = ParamType::Real;
+  std::string value;          // current value, as text
+  std::string default_value;  // problem default
+  std::string unit;           // SI unit, "-" for dimensionless
+  std::string help;
+  std::vector<std::string> choices;  // for ParamType::Choice
+  bool cell_count = false;           // scaled by --scale
+};
+
+class Config {
+ public:
+  void addReal(const std::string& key, double value, const std::string& unit,
+               const std::string& help);
+  void addInteger(const std::string& key, long value, const std::string& help,
+                  bool cell_count = false);
+  void addText(const std::string& key, const std::string& value, const std::string& help);
+  void addChoice(const std::string& key, const std::string& value,
+                 const std::vector<std::string>& choices, const std::string& help);
+  void addBoolean(const std::string& key, bool value, const std::string& help);
+  // Changes the default (and current value) of an existing key; for problems
+  // that share common keys but want other defaults.
+  void setDefault(const std::string& key, const std::string& value);
+
+  // Sets a value from text; throws ConfigError for an unknown key or a value
+  // that does not parse as the key's type.
+  void set(const std::string& key, const std::string& value);
+  // "key=value"
+  void setAssignment(const std::string& assignment);
+  // Reads a TOML deck: nested tables become dotted keys. The special keys
+  // `problem` and `mode` are returned through the out parameters if present.
+  void loadDeck(const std::string& path, std::string* problem, std::string* mode);
+  // Multiplies every cell-count key with a value > 1 by `scale` (--scale).
+  void scaleCellCounts(double scale);
+
+  bool has(const std::string& key) const { return params_.count(key) != 0; }
+  double real(const std::string& key) const;
+  long integer(const std::string& key) const;
+  bool boolean(const std::string& key) const;
+  const std::string& text(const std::string& key) const;
+
+  // All keys in order, for --print-config and summary.json.
+  const std::map<std::string, Param>& params() const { return params_; }
+  std::string printable() const;
+
+ private:
+  const Param& get(const std::string& key) const;
+  void add(Param param);
+  std::map<std::string, Param> params_;
+};
+
+}  // namespace lagremap

@@ -1,0 +1,105 @@
+// HDF5 + XDMF snapshot writer for unstructured 8-node hexahedral meshes.
+//
+// Each call to SnapshotSeries::write() produces, in the series directory:
+//   <series>_<NNNNN>.h5   heavy data:  /mesh/coordinates   float64 [n_nodes, 3]
+//                                      /mesh/connectivity  int64   [n_cells, 8] (VTK_HEXAHEDRON
+//                                      order) /fields/<name>      float64 [n_cells] or [n_cells,
+//                                      components] attribute "time" (float64) on the root group
+//   <series>_<NNNNN>.xmf  light data describing that one snapshot
+//   <series>.xmf          temporal collection of every snapshot written so far
+//                         (rewritten atomically after each snapshot; open this one in
+//                         ParaView to get an animated series)
+// The .xmf files reference the .h5 files by relative file name, so the directory can be
+// moved or copied as a whole.
+//
+// Plain host C++17 + the HDF5 C API; no Kokkos, no MPI calls (yet). Device data must be
+// copied to host (e.g. Kokkos::create_mirror_view_and_copy) before calling write().
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace lagremap::io {
+
+// One cell-centred field. data holds n_cells * components doubles, component fastest.
+//   components == 1 : scalar            -> XDMF AttributeType "Scalar"
+//   components == 3 : vector            -> "Vector"
+//   components == 6 : symmetric tensor, stored in the order xx, yy, zz, xy, yz, xz
+//                                       -> "Tensor6". ParaView's XDMF3 readers
+//                     (Xdmf3ReaderS/T) pass the 6 components through unchanged, which is
+//                     VTK's symmetric-tensor order, so they come out right. The legacy
+//                     XDMF2 "XDMFReader" instead expands Tensor6 to 9 components assuming
+//                     XDMF's xx, xy, xz, yy, yz, zz order, mislabelling the off-diagonals.
+//   components == 9 : full tensor, row-major xx, xy, xz, yx, ... -> "Tensor"
+//   any other count >= 1                -> "Matrix" (n_cells x components)
+// name must be non-empty, unique within one write() call, and contain no '/' or ':'.
+struct CellField {
+  std::string name;
+  const double* data;
+  int components;
+};
+
+// Host view of the mesh. node_xyz: 3 * n_nodes (x, y, z per node);
+// cell_nodes: 8 * n_cells zero-based node indices in VTK_HEXAHEDRON order.
+struct SnapshotMesh {
+  std::int64_t n_nodes;
+  const double* node_xyz;
+  std::int64_t n_cells;
+  const std::int64_t* cell_nodes;
+};
+
+// A time series of snapshots sharing one directory and one base name.
+//
+// Errors: a file or directory that cannot be created/written, or any HDF5 failure, throws
+// std::runtime_error with a one-line message naming the file. Invalid arguments (bad series
+// name, null pointers, out-of-range connectivity, bad field names/component counts) throw
+// std::invalid_argument. A failed write() leaves count() unchanged and removes the
+// partially written .h5 file.
+//
+// Note: a new SnapshotSeries always starts at index 0 and overwrites existing files of the
+// same series in the directory (no restart/append support yet).
+//
+// Parallel extension (not implemented; serial now): see the comment above
+// write_snapshot_h5() in snapshot_writer.cpp. In short: open the file with an MPI-IO file
+// access property list, create datasets with the global sizes, let each rank select its
+// [offset, offset + count) row slab with a hyperslab and write collectively; rank 0 alone
+// writes the .xmf files. The internal dataset writer already takes (global rows, row
+// offset, local rows), so only the property lists and the offset computation change.
+class SnapshotSeries {
+ public:
+  // Creates `directory` (and parents) if needed; throws std::runtime_error if it cannot.
+  // series_name must be non-empty and contain no '/', '\\' or ':'.
+  SnapshotSeries(std::string directory, std::string series_name);
+
+  // Writes snapshot number count() (see the file layout above) and rewrites the series
+  // .xmf. Returns the path of the .h5 file written (<directory>/<series>_<NNNNN>.h5).
+  std::string write(double time, const SnapshotMesh& mesh, const std::vector<CellField>& fields);
+
+  // Number of snapshots successfully written so far.
+  int count() const;
+
+  const std::string& directory() const { return directory_; }
+  const std::string& series_name() const { return series_name_; }
+  // Path of the temporal-collection file <directory>/<series>.xmf (exists after the first write).
+  std::string series_xmf_path() const;
+
+ private:
+  struct FieldInfo {
+    std::string name;
+    int components;
+  };
+  struct Entry {
+    double time;
+    std::string h5_name;  // file name relative to directory_
+    std::int64_t n_nodes;
+    std::int64_t n_cells;
+    std::vector<FieldInfo> fields;
+  };
+
+  std::string directory_;
+  std::string series_name_;
+  std::vector<Entry> entries_;
+};
+
+}  // namespace lagremap::io

@@ -1,0 +1,68 @@
+#include "lagrange_step.hpp"
+
+namespace lagremap {
+
+std::string describeInvalidCell(const StepLimit& limit, long step, const char* when) {
+  const int cell = limit.loc / kLimitCodes;
+  const char* what = "invalid state";
+  switch (limit.loc % kLimitCodes) {
+    case kBadVolume: what = "non-positive volume (tangled cell)"; break;
+    case kBadState: what = "NaN or infinite energy or velocity"; break;
+    case kBadSoundSpeed: what = "non-positive squared sound speed (negative energy/pressure)"; break;
+    default: break;
+  }
+  return "step " + std::to_string(step) + " (" + when + "), cell " + std::to_string(cell) + ": " +
+         what;
+}
+
+LagrangeStep::LagrangeStep(Mesh& mesh, State& state, const Numerics& numerics,
+                           PhaseTimers& timers)
+    : mesh_(mesh), state_(state), numerics_(numerics), timers_(timers) {}
+
+StepLimit LagrangeStep::computeGeometry() {
+  auto scope = timers_.scope(Phase::Geometry);
+  return lagremap::computeGeometry(mesh_, state_, numerics_.step);
+}
+
+void LagrangeStep::advance(double dt, long step) {
+  saveStartOfStep();
+  if (numerics_.order == 1) {
+    stage(dt);  // forward Euler
+    return;
+  }
+  stage(0.5 * dt);  // predictor: nodal velocities of t^n carry the state to t^{n+1/2}
+  const StepLimit half_step = computeGeometry();
+  if (half_step.val < 0.0) throw RunFailure(describeInvalidCell(half_step, step, "predictor"));
+  stage(dt);  // corrector: forces and velocities of t^{n+1/2} carry t^n to t^{n+1}
+}
+
+void LagrangeStep::stage(double dt_stage) {
+  const CornerControls corner_controls{numerics_.order, numerics_.gather};
+  {
+    auto scope = timers_.scope(Phase::Corners);
+    computeCornerTerms(mesh_, state_, corner_controls);
+  }
+  {
+    auto scope = timers_.scope(Phase::NodalSolve);
+    nodalSolve(mesh_, state_, corner_controls, dt_stage);
+  }
+  {
+    auto scope = timers_.scope(Phase::CellUpdate);
+    updateCells(mesh_, state_, dt_stage);
+  }
+}
+
+void LagrangeStep::saveStartOfStep() {
+  Kokkos::deep_copy(state_.x_n0, mesh_.x_n);
+  Kokkos::deep_copy(state_.v_c0, state_.v_c);
+  Kokkos::deep_copy(state_.E_c0, state_.E_c);
+}
+
+void LagrangeStep::restoreStartOfStep() {
+  Kokkos::deep_copy(mesh_.x_n, state_.x_n0);
+  Kokkos::deep_copy(state_.v_c, state_.v_c0);
+  Kokkos::deep_copy(state_.E_c, state_.E_c0);
+  computeGeometry();
+}
+
+}  // namespace lagremap

@@ -1,0 +1,60 @@
+// The Lagrangian step of DESIGN §3, as it reads in the paper:
+//   geometry -> time step -> [predictor: corners, nodal solve, cell update (dt/2)]
+//   -> geometry at t^{n+1/2} -> [corrector: corners, nodal solve, cell update (dt)]
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+#include "../kernels/geometry.hpp"
+#include "../kernels/nodal_solver.hpp"
+#include "mesh.hpp"
+#include "state.hpp"
+#include "timers.hpp"
+
+namespace lagremap {
+
+struct Numerics {
+  int order = 2;
+  TimeStepControls step;
+  double dt_growth = 1.05;        // dt <= dt_growth * dt_prev
+  double dt_initial_factor = 0.1; // first dt = factor * stable dt
+  double dt_min = 0.0;            // below this the run stops (dt collapse)
+  long max_steps = 10000000;
+  Gather gather = Gather::Crs;
+};
+
+// A run that cannot go on (tangled cell, NaN, dt collapse): the driver writes
+// the last good state and exits with code 3.
+struct RunFailure : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Text for a failure found by the time-step reduction.
+std::string describeInvalidCell(const StepLimit& limit, long step, const char* when);
+
+class LagrangeStep {
+ public:
+  LagrangeStep(Mesh& mesh, State& state, const Numerics& numerics, PhaseTimers& timers);
+
+  // Geometry and thermodynamics of the current node positions; returns the
+  // time-step candidate (negative for an invalid cell).
+  StepLimit computeGeometry();
+  // One step t^n -> t^{n+1} from a state whose geometry is current. Throws
+  // RunFailure if the half-step state is invalid; the start-of-step copy is kept.
+  void advance(double dt, long step);
+  // Puts back the state of the start of the last step (the last good state).
+  void restoreStartOfStep();
+  // Copies the current state as the start of a step.
+  void saveStartOfStep();
+
+ private:
+  void stage(double dt_stage);
+
+  Mesh& mesh_;
+  State& state_;
+  Numerics numerics_;
+  PhaseTimers& timers_;
+};
+
+}  // namespace lagremap

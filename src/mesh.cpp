@@ -1,0 +1,203 @@
+#include "mesh.hpp"
+
+#include <random>
+#include <stdexcept>
+#include <vector>
+
+#include "../kernels/hex.hpp"
+
+namespace lagremap {
+namespace {
+
+template <class HostView, class DeviceViewT>
+void upload(const HostView& host, DeviceViewT& device) {
+  device = DeviceViewT(Kokkos::view_alloc(Kokkos::WithoutInitializing, host.label()),
+                       host.extent(0));
+  Kokkos::deep_copy(device, host);
+}
+
+template <class T>
+IndexView uploadList(const std::string& label, const std::vector<T>& list) {
+  Kokkos::View<Index*, HostSpace> host(label, list.size());
+  for (std::size_t i = 0; i < list.size(); ++i) host(i) = static_cast<Index>(list[i]);
+  IndexView device(Kokkos::view_alloc(Kokkos::WithoutInitializing, label), list.size());
+  Kokkos::deep_copy(device, host);
+  return device;
+}
+
+}  // namespace
+
+Mesh buildBlockMesh(const BlockSpec& spec, const SideBoundaries& boundaries) {
+  if (spec.nx < 1 || spec.ny < 1 || spec.nz < 1) {
+    throw std::invalid_argument("mesh needs at least one cell in each direction");
+  }
+  Mesh mesh;
+  mesh.nx = spec.nx;
+  mesh.ny = spec.ny;
+  mesh.nz = spec.nz;
+  const long n_nodes = long(spec.nx + 1) * (spec.ny + 1) * (spec.nz + 1);
+  const long n_cells = long(spec.nx) * spec.ny * spec.nz;
+  if (n_nodes >= (1L << 31) / 8) throw std::invalid_argument("mesh too large for 32-bit indices");
+  mesh.n_nodes = static_cast<Index>(n_nodes);
+  mesh.n_cells = static_cast<Index>(n_cells);
+
+  auto node_id = [&](int i, int j, int k) { return i + (spec.nx + 1) * (j + (spec.ny + 1) * k); };
+  auto cell_id = [&](int i, int j, int k) { return i + spec.nx * (j + spec.ny * k); };
+
+  // --- node coordinates: block, random interior perturbation, then the mapping.
+  Kokkos::View<Real* [3], HostSpace> x_host("lagremap::mesh::x_n", mesh.n_nodes);
+  const double dx = (spec.hi.x - spec.lo.x) / spec.nx;
+  const double dy = (spec.hi.y - spec.lo.y) / spec.ny;
+  const double dz = (spec.hi.z - spec.lo.z) / spec.nz;
+  std::mt19937 rng(spec.seed);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (int k = 0; k <= spec.nz; ++k)
+    for (int j = 0; j <= spec.ny; ++j)
+      for (int i = 0; i <= spec.nx; ++i) {
+        Vec3 x{spec.lo.x + i * dx, spec.lo.y + j * dy, spec.lo.z + k * dz};
+        const bool interior =
+            i > 0 && i < spec.nx && j > 0 && j < spec.ny && k > 0 && k < spec.nz;
+        if (spec.perturbation > 0.0 && interior) {
+          x += Vec3{spec.perturbation * dx * unit(rng), spec.perturbation * dy * unit(rng),
+                    spec.perturbation * dz * unit(rng)};
+        }
+        if (spec.mapping) x = spec.mapping(x);
+        storeVec3(x_host, node_id(i, j, k), x);
+      }
+
+  // --- cell -> node (VTK hex), cell -> neighbour and boundary side per face.
+  Kokkos::View<Index* [8], HostSpace> nodes_host("lagremap::mesh::cell_nodes", mesh.n_cells);
+  Kokkos::View<Index* [6], HostSpace> neighbors_host("lagremap::mesh::cell_neighbors",
+                                                     mesh.n_cells);
+  Kokkos::View<Index* [6], HostSpace> side_host("lagremap::mesh::cell_face_side", mesh.n_cells);
+  for (int k = 0; k < spec.nz; ++k)
+    for (int j = 0; j < spec.ny; ++j)
+      for (int i = 0; i < spec.nx; ++i) {
+        const int c = cell_id(i, j, k);
+        const int corner_nodes[8] = {node_id(i, j, k),         node_id(i + 1, j, k),
+                                     node_id(i + 1, j + 1, k), node_id(i, j + 1, k),
+                                     node_id(i, j, k + 1),     node_id(i + 1, j, k + 1),
+                                     node_id(i + 1, j + 1, k + 1), node_id(i, j + 1, k + 1)};
+        for (int p = 0; p < 8; ++p) nodes_host(c, p) = corner_nodes[p];
+        const bool at_lo[3] = {i == 0, j == 0, k == 0};
+        const bool at_hi[3] = {i == spec.nx - 1, j == spec.ny - 1, k == spec.nz - 1};
+        const int lo_neighbor[3] = {c - 1, c - spec.nx, c - spec.nx * spec.ny};
+        const int hi_neighbor[3] = {c + 1, c + spec.nx, c + spec.nx * spec.ny};
+        for (int axis = 0; axis < 3; ++axis) {
+          neighbors_host(c, 2 * axis) = at_lo[axis] ? -1 : lo_neighbor[axis];
+          neighbors_host(c, 2 * axis + 1) = at_hi[axis] ? -1 : hi_neighbor[axis];
+          side_host(c, 2 * axis) = at_lo[axis] ? 2 * axis : -1;
+          side_host(c, 2 * axis + 1) = at_hi[axis] ? 2 * axis + 1 : -1;
+        }
+      }
+
+  // --- node -> corner CRS, in corner-id order (deterministic gathers).
+  std::vector<Index> corner_offsets(mesh.n_nodes + 1, 0);
+  for (Index c = 0; c < mesh.n_cells; ++c)
+    for (int p = 0; p < 8; ++p) ++corner_offsets[nodes_host(c, p) + 1];
+  for (Index n = 0; n < mesh.n_nodes; ++n) corner_offsets[n + 1] += corner_offsets[n];
+  std::vector<Index> corners(corner_offsets.back());
+  {
+    std::vector<Index> fill(corner_offsets.begin(), corner_offsets.end() - 1);
+    for (Index c = 0; c < mesh.n_cells; ++c)
+      for (int p = 0; p < 8; ++p) corners[fill[nodes_host(c, p)]++] = 8 * c + p;
+  }
+
+  // --- boundary: per node, the outward normal of each constrained side (area
+  // weighted over the node's corner faces on that side) and the traction faces.
+  std::vector<std::array<Vec3, kNumSides>> side_normal(mesh.n_nodes);
+  std::vector<unsigned> node_sides(mesh.n_nodes, 0u);
+  std::vector<std::vector<Index>> traction_faces(mesh.n_nodes);
+  for (Index c = 0; c < mesh.n_cells; ++c) {
+    Vec3 x[8];
+    for (int p = 0; p < 8; ++p) x[p] = loadVec3(x_host, nodes_host(c, p));
+    for (int f = 0; f < 6; ++f) {
+      const int side = side_host(c, f);
+      if (side < 0) continue;
+      Vec3 q[4], w[4];
+      hex::faceNodes(x, f, q);
+      hex::faceCornerVectors(q, w);
+      for (int k = 0; k < 4; ++k) {
+        const Index node = nodes_host(c, hex::faceNode(f, k));
+        if ((node_sides[node] & (1u << side)) == 0) side_normal[node][side] = Vec3{0, 0, 0};
+        node_sides[node] |= 1u << side;
+        side_normal[node][side] += w[k];
+        if (boundaries[side].kind == BoundaryKind::Traction) {
+          traction_faces[node].push_back(6 * c + f);
+        }
+      }
+    }
+  }
+  Kokkos::View<int*, HostSpace> constrained_host("lagremap::mesh::node_constrained", mesh.n_nodes);
+  Kokkos::View<Real* [6], HostSpace> projector_host("lagremap::mesh::node_projector",
+                                                    mesh.n_nodes);
+  std::vector<Index> traction_offsets(mesh.n_nodes + 1, 0);
+  std::vector<Index> traction_list;
+  for (Index n = 0; n < mesh.n_nodes; ++n) {
+    // Orthonormal basis of the constrained directions (Gram-Schmidt); a fixed
+    // side constrains all three.
+    Vec3 basis[3];
+    int n_constraints = 0;
+    for (int side = 0; side < kNumSides; ++side) {
+      if ((node_sides[n] & (1u << side)) == 0) continue;
+      const BoundaryKind kind = boundaries[side].kind;
+      if (kind == BoundaryKind::Fixed) {
+        n_constraints = 3;
+        break;
+      }
+      if (kind != BoundaryKind::Wall) continue;
+      Vec3 normal = side_normal[n][side];
+      for (int b = 0; b < n_constraints; ++b) normal -= dot(normal, basis[b]) * basis[b];
+      const double length = norm(normal);
+      // Parallel planes (a node on both sides of a one-cell slab cannot happen;
+      // nearly coplanar sides of a mapped block can) add no new constraint.
+      if (length > 1e-8 * norm(side_normal[n][side]) && n_constraints < 3) {
+        basis[n_constraints++] = (1.0 / length) * normal;
+      }
+    }
+    SymMat3 projector = identitySym();
+    if (n_constraints == 3) {
+      projector = identitySym(0.0);
+    } else {
+      for (int b = 0; b < n_constraints; ++b) projector += outerSelf(basis[b], -1.0);
+    }
+    constrained_host(n) = n_constraints > 0 ? 1 : 0;
+    storeSym(projector_host, n, projector);
+    traction_offsets[n + 1] = traction_offsets[n] + Index(traction_faces[n].size());
+    traction_list.insert(traction_list.end(), traction_faces[n].begin(), traction_faces[n].end());
+  }
+  Kokkos::View<Real[kNumSides][6], HostSpace> traction_host("lagremap::mesh::side_traction");
+  for (int side = 0; side < kNumSides; ++side) {
+    const SymMat3& s = boundaries[side].traction_stress;
+    const double comps[6] = {s.xx, s.yy, s.zz, s.xy, s.yz, s.xz};
+    for (int i = 0; i < 6; ++i) traction_host(side, i) = comps[i];
+  }
+
+  upload(x_host, mesh.x_n);
+  upload(nodes_host, mesh.cell_nodes);
+  upload(neighbors_host, mesh.cell_neighbors);
+  upload(side_host, mesh.cell_face_side);
+  upload(constrained_host, mesh.node_constrained);
+  upload(projector_host, mesh.node_projector);
+  mesh.node_corner_offsets = uploadList("lagremap::mesh::node_corner_offsets", corner_offsets);
+  mesh.node_corners = uploadList("lagremap::mesh::node_corners", corners);
+  mesh.node_traction_offsets =
+      uploadList("lagremap::mesh::node_traction_offsets", traction_offsets);
+  mesh.node_traction_faces = uploadList("lagremap::mesh::node_traction_faces", traction_list);
+  mesh.side_traction = decltype(mesh.side_traction)("lagremap::mesh::side_traction");
+  Kokkos::deep_copy(mesh.side_traction, traction_host);
+  Kokkos::View<int[kNumSides], HostSpace> kind_host("lagremap::mesh::side_kind");
+  for (int side = 0; side < kNumSides; ++side) kind_host(side) = int(boundaries[side].kind);
+  mesh.side_kind = decltype(mesh.side_kind)("lagremap::mesh::side_kind");
+  Kokkos::deep_copy(mesh.side_kind, kind_host);
+  return mesh;
+}
+
+HostMesh copyToHost(const Mesh& mesh) {
+  HostMesh host;
+  host.x_n = Kokkos::create_mirror_view_and_copy(HostSpace(), mesh.x_n);
+  host.cell_nodes = Kokkos::create_mirror_view_and_copy(HostSpace(), mesh.cell_nodes);
+  return host;
+}
+
+}  // namespace lagremap

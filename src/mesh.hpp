@@ -1,0 +1,55 @@
+// Unstructured hexahedral mesh in flat SoA Views (DESIGN §6), generated from a
+// block. Connectivity is built once on the host and mirrored to the device.
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "boundary.hpp"
+#include "types.hpp"
+
+namespace lagremap {
+
+struct BlockSpec {
+  int nx = 1, ny = 1, nz = 1;
+  Vec3 lo{0.0, 0.0, 0.0}, hi{1.0, 1.0, 1.0};
+  // Smooth map applied to the block's node positions (e.g. a polar shell); identity if empty.
+  std::function<Vec3(const Vec3&)> mapping;
+  // Random displacement of interior nodes, as a fraction of the local cell size (tests).
+  double perturbation = 0.0;
+  unsigned seed = 12345;
+};
+
+struct Mesh {
+  Index n_nodes = 0, n_cells = 0;
+  int nx = 0, ny = 0, nz = 0;  // block dimensions (cell id = i + nx (j + ny k))
+
+  Vec3View x_n;                  // node coordinates (moved by the Lagrangian phase)
+  CellNodesView cell_nodes;      // 8 nodes per cell, VTK_HEXAHEDRON order
+  CellFacesView cell_neighbors;  // neighbour across each face, -1 on the boundary
+  CellFacesView cell_face_side;  // box side of a boundary face, -1 for interior faces
+
+  // node -> corner CRS; corner id = 8 * cell + local node. Sorted by corner id,
+  // so every node sum is taken in the same order whatever the thread count.
+  IndexView node_corner_offsets, node_corners;
+
+  // Boundary data of the nodal solver.
+  DeviceView<int*> node_constrained;  // 1 if the node has a velocity constraint
+  Sym6View node_projector;            // projector on the allowed velocity subspace
+  // node -> boundary faces with an imposed traction (face id = 6 * cell + face).
+  IndexView node_traction_offsets, node_traction_faces;
+  DeviceView<Real[kNumSides][6]> side_traction;  // sigma^b of each side (Sym6 order)
+  DeviceView<int[kNumSides]> side_kind;          // BoundaryKind of each side
+};
+
+// Builds the mesh of a block with the side boundary conditions.
+Mesh buildBlockMesh(const BlockSpec& spec, const SideBoundaries& boundaries);
+
+// Host copies of coordinates and connectivity, for output and checks.
+struct HostMesh {
+  Vec3View::HostMirror x_n;
+  CellNodesView::HostMirror cell_nodes;
+};
+HostMesh copyToHost(const Mesh& mesh);
+
+}  // namespace lagremap

@@ -1,0 +1,67 @@
+// Built-in problems: a generator (mesh, materials, initial cells) and its
+// checks, registered by name (STYLE §1: the driver only looks them up).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "config.hpp"
+#include "mesh.hpp"
+#include "state.hpp"
+
+namespace lagremap {
+
+// A validation number of a problem: passes when |value - reference| <= tolerance.
+struct Check {
+  std::string name;
+  double value = 0.0, reference = 0.0, tolerance = 0.0;
+  std::string note;  // what the number is and where the reference comes from
+  bool pass() const;
+};
+
+// Initial cell state, host side, one entry per cell.
+struct InitialCells {
+  std::vector<double> rho, e;  // density, specific internal energy
+  std::vector<Vec3> v;         // velocity
+  std::vector<int> mat;        // material index into ProblemSetup::materials
+};
+
+struct ProblemSetup {
+  Mesh mesh;
+  std::vector<MaterialParams> materials;
+  InitialCells cells;
+};
+
+// Host copies of the fields at the end of a run, for problem checks and CSVs.
+struct FinalFields {
+  double time = 0.0;
+  int nx = 0, ny = 0, nz = 0;
+  HostMesh mesh;
+  RealView::HostMirror rho, p, e, vol;
+  Vec3View::HostMirror v, x_c;
+};
+
+struct Problem {
+  const char* name;
+  const char* description;
+  // Declares every problem key with its default (materials, geometry, boundary
+  // conditions, mesh, t_end).
+  void (*declare)(Config& config);
+  ProblemSetup (*setup)(const Config& config);
+  // Writes the problem's CSVs into out_dir and returns its checks.
+  std::vector<Check> (*finish)(const Config& config, const FinalFields& fields,
+                               const std::string& out_dir);
+};
+
+const std::vector<Problem>& problemRegistry();
+// Throws ConfigError naming the unknown problem and the known ones.
+const Problem& findProblem(const std::string& name);
+
+// Helpers shared by the generators.
+void declareMeshKeys(Config& config, int nx, int ny, int nz);
+void declareBoundaryKeys(Config& config, const std::array<const char*, kNumSides>& defaults);
+SideBoundaries readBoundaries(const Config& config);
+// Volumes and centroids of the cells on the host (same formulas as the kernels).
+void hostCellShapes(const HostMesh& mesh, std::vector<double>& volume, std::vector<Vec3>& centroid);
+
+}  // namespace lagremap

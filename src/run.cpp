@@ -1,0 +1,393 @@
+#include "run.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+
+#include "diagnostics.hpp"
+#include "io/snapshot_writer.hpp"
+#include "json.hpp"
+#include "lagrange_step.hpp"
+
+namespace lagremap {
+
+bool RunResult::checksPass() const {
+  for (const auto& check : checks)
+    if (!check.pass()) return false;
+  return !failed;
+}
+
+Config declareConfig(const Problem& problem) {
+  Config config;
+  problem.declare(config);
+  config.addChoice("numerics.order", "2", {"1", "2"},
+                   "1: first order; 2: limited linear reconstruction + predictor-corrector");
+  config.addReal("numerics.cfl", 0.4, "-", "CFL number C_cfl of dt <= C_cfl l_c / aL_c");
+  config.addReal("numerics.c_vol", 0.1, "-", "max relative volume change per step C_vol");
+  config.addReal("numerics.dt_growth", 1.05, "-", "max ratio of two successive time steps");
+  config.addReal("numerics.dt_initial_factor", 0.1, "-", "first dt as a fraction of the stable dt");
+  config.addReal("numerics.dt_min_fraction", 1e-12, "-",
+                 "the run stops when dt falls below this fraction of t_end");
+  config.addInteger("numerics.max_steps", 10000000, "the run stops after this many steps");
+  config.addChoice("numerics.gather", "crs", {"crs", "atomics"},
+                   "node sums: node->corner CRS (deterministic) or atomic scatter");
+  return config;
+}
+
+namespace {
+
+Numerics readNumerics(const Config& config) {
+  Numerics numerics;
+  numerics.order = int(config.integer("numerics.order"));
+  numerics.step.cfl = config.real("numerics.cfl");
+  numerics.step.c_vol = config.real("numerics.c_vol");
+  numerics.dt_growth = config.real("numerics.dt_growth");
+  numerics.dt_initial_factor = config.real("numerics.dt_initial_factor");
+  numerics.dt_min = config.real("numerics.dt_min_fraction") * config.real("t_end");
+  numerics.max_steps = config.integer("numerics.max_steps");
+  numerics.gather = config.text("numerics.gather") == "atomics" ? Gather::Atomics : Gather::Crs;
+  if (!(numerics.step.cfl > 0.0 && numerics.step.cfl <= 1.0)) {
+    throw ConfigError("numerics.cfl must be in (0, 1]");
+  }
+  if (!(numerics.step.c_vol > 0.0 && numerics.step.c_vol < 1.0)) {
+    throw ConfigError("numerics.c_vol must be in (0, 1)");
+  }
+  if (!(numerics.dt_growth >= 1.0)) throw ConfigError("numerics.dt_growth must be >= 1");
+  if (!(numerics.dt_initial_factor > 0.0 && numerics.dt_initial_factor <= 1.0)) {
+    throw ConfigError("numerics.dt_initial_factor must be in (0, 1]");
+  }
+  if (numerics.max_steps < 1) throw ConfigError("numerics.max_steps must be >= 1");
+  if (!(config.real("t_end") > 0.0)) throw ConfigError("t_end must be > 0");
+  return numerics;
+}
+
+// Uploads the problem's initial cells: m = rho v (v from the same geometry
+// kernel the run uses), E = e + |V|^2 / 2.
+void initializeState(const ProblemSetup& setup, State& state) {
+  const Index n_cells = setup.mesh.n_cells;
+  const InitialCells& cells = setup.cells;
+  if (Index(cells.rho.size()) != n_cells || Index(cells.e.size()) != n_cells ||
+      Index(cells.v.size()) != n_cells || Index(cells.mat.size()) != n_cells) {
+    throw std::logic_error("problem set-up gave initial data of the wrong size");
+  }
+  std::vector<double> volume;
+  std::vector<Vec3> centroid;
+  hostCellShapes(copyToHost(setup.mesh), volume, centroid);
+  auto m_host = Kokkos::create_mirror_view(state.m_c);
+  auto v_host = Kokkos::create_mirror_view(state.v_c);
+  auto E_host = Kokkos::create_mirror_view(state.E_c);
+  auto mat_host = Kokkos::create_mirror_view(state.mat_c);
+  for (Index c = 0; c < n_cells; ++c) {
+    if (!(cells.rho[c] > 0.0) || !(volume[c] > 0.0)) {
+      throw ConfigError("initial state: cell " + std::to_string(c) +
+                        " has a non-positive density or volume");
+    }
+    if (cells.mat[c] < 0 || cells.mat[c] >= int(setup.materials.size())) {
+      throw std::logic_error("problem set-up gave an unknown material index");
+    }
+    m_host(c) = cells.rho[c] * volume[c];
+    storeVec3(v_host, c, cells.v[c]);
+    E_host(c) = cells.e[c] + 0.5 * dot(cells.v[c], cells.v[c]);
+    mat_host(c) = cells.mat[c];
+  }
+  Kokkos::deep_copy(state.m_c, m_host);
+  Kokkos::deep_copy(state.v_c, v_host);
+  Kokkos::deep_copy(state.E_c, E_host);
+  Kokkos::deep_copy(state.mat_c, mat_host);
+  state.materials = MaterialView("lagremap::state::materials", setup.materials.size());
+  auto materials_host = Kokkos::create_mirror_view(state.materials);
+  for (std::size_t k = 0; k < setup.materials.size(); ++k) materials_host(k) = setup.materials[k];
+  Kokkos::deep_copy(state.materials, materials_host);
+}
+
+FinalFields copyFields(const ProblemSetup& setup, const State& state, double time) {
+  FinalFields fields;
+  fields.time = time;
+  fields.nx = setup.mesh.nx;
+  fields.ny = setup.mesh.ny;
+  fields.nz = setup.mesh.nz;
+  fields.mesh = copyToHost(setup.mesh);
+  fields.rho = Kokkos::create_mirror_view_and_copy(HostSpace(), state.rho_c);
+  fields.p = Kokkos::create_mirror_view_and_copy(HostSpace(), state.p_c);
+  fields.e = Kokkos::create_mirror_view_and_copy(HostSpace(), state.e_c);
+  fields.vol = Kokkos::create_mirror_view_and_copy(HostSpace(), state.vol_c);
+  fields.v = Kokkos::create_mirror_view_and_copy(HostSpace(), state.v_c);
+  fields.x_c = Kokkos::create_mirror_view_and_copy(HostSpace(), state.x_c);
+  return fields;
+}
+
+void writeSnapshot(io::SnapshotSeries& series, const FinalFields& fields) {
+  const Index n_cells = Index(fields.rho.extent(0));
+  const Index n_nodes = Index(fields.mesh.x_n.extent(0));
+  std::vector<double> xyz(3 * std::size_t(n_nodes)), velocity(3 * std::size_t(n_cells));
+  std::vector<std::int64_t> connectivity(8 * std::size_t(n_cells));
+  for (Index n = 0; n < n_nodes; ++n)
+    for (int d = 0; d < 3; ++d) xyz[3 * n + d] = fields.mesh.x_n(n, d);
+  for (Index c = 0; c < n_cells; ++c) {
+    for (int p = 0; p < 8; ++p) connectivity[8 * std::size_t(c) + p] = fields.mesh.cell_nodes(c, p);
+    for (int d = 0; d < 3; ++d) velocity[3 * c + d] = fields.v(c, d);
+  }
+  const io::SnapshotMesh mesh{n_nodes, xyz.data(), n_cells, connectivity.data()};
+  series.write(fields.time, mesh,
+               {{"density", fields.rho.data(), 1},
+                {"pressure", fields.p.data(), 1},
+                {"internal_energy", fields.e.data(), 1},
+                {"volume", fields.vol.data(), 1},
+                {"velocity", velocity.data(), 3}});
+}
+
+const char* limitReason(const StepLimit& limit) {
+  return limit.loc % kLimitCodes == kLimitVolume ? "volume" : "cfl";
+}
+
+std::string formatSeconds(double seconds) {
+  char text[32];
+  if (seconds < 120) {
+    std::snprintf(text, sizeof text, "%.0fs", seconds);
+  } else {
+    std::snprintf(text, sizeof text, "%.0fm%02.0fs", std::floor(seconds / 60),
+                  std::fmod(seconds, 60.0));
+  }
+  return text;
+}
+
+}  // namespace
+
+RunResult runProblem(const RunOptions& options) {
+  const Problem& problem = findProblem(options.problem);
+  if (options.mode != "lagrange") {
+    throw ConfigError("mode '" + options.mode +
+                      "' is not available in this version (known: lagrange)");
+  }
+  const Config& config = options.config;
+  const Numerics numerics = readNumerics(config);
+  const double t_end = config.real("t_end");
+  for (double t_out : options.output_times) {
+    if (!(t_out >= 0.0 && t_out <= t_end)) {
+      throw ConfigError("output time " + std::to_string(t_out) + " is outside [0, t_end]");
+    }
+  }
+  if (options.output_every < 0) throw ConfigError("--output-every must be >= 0");
+
+  ProblemSetup setup = problem.setup(config);
+  Mesh& mesh = setup.mesh;
+  State state = allocateState(mesh, numerics.gather == Gather::Atomics);
+  initializeState(setup, state);
+
+  PhaseTimers timers;
+  LagrangeStep lagrange(mesh, state, numerics, timers);
+  StepLimit limit = lagrange.computeGeometry();
+  if (limit.val < 0.0) {
+    throw ConfigError("initial state is invalid: " + describeInvalidCell(limit, 0, "set-up"));
+  }
+  lagrange.saveStartOfStep();
+
+  // --- outputs
+  const std::string& dir = options.output_dir;
+  std::unique_ptr<io::SnapshotSeries> snapshots;
+  std::ofstream history;
+  if (options.write_files) {
+    std::error_code error;
+    std::filesystem::create_directories(dir, error);
+    if (error) throw ConfigError("cannot create output directory '" + dir + "': " + error.message());
+    history.open(dir + "/history.csv");
+    if (!history) throw ConfigError("cannot write '" + dir + "/history.csv'");
+    history << "step,t,dt,dt_reason,mass,momentum_x,momentum_y,momentum_z,kinetic_energy,"
+               "internal_energy,total_energy\n"
+            << std::setprecision(15);
+    snapshots = std::make_unique<io::SnapshotSeries>(dir, "fields");
+  }
+  auto writeHistory = [&](long step, double t, double dt, const char* reason, const Totals& tot) {
+    if (!history.is_open()) return;
+    history << step << ',' << t << ',' << dt << ',' << reason << ',' << tot.mass << ','
+            << tot.momentum.x << ',' << tot.momentum.y << ',' << tot.momentum.z << ','
+            << tot.kinetic << ',' << tot.internal << ',' << tot.total() << '\n';
+  };
+  auto snapshot = [&](double t) {
+    if (!snapshots) return;
+    auto scope = timers.scope(Phase::Output);
+    writeSnapshot(*snapshots, copyFields(setup, state, t));
+  };
+
+  const Totals initial = computeTotals(mesh, state);
+  writeHistory(0, 0.0, 0.0, "initial", initial);
+  snapshot(0.0);
+  std::vector<double> pending_outputs = options.output_times;
+  std::sort(pending_outputs.begin(), pending_outputs.end());
+  pending_outputs.erase(std::remove(pending_outputs.begin(), pending_outputs.end(), 0.0),
+                        pending_outputs.end());
+
+  // --- time loop (DESIGN §3)
+  RunResult result;
+  result.cells = mesh.n_cells;
+  Vec3 impulse{0, 0, 0};  // boundary impulse and work, for the conservation audit
+  double work = 0.0;
+  double t = 0.0, dt_prev = 0.0;
+  long step = 0;
+  const auto wall_start = std::chrono::steady_clock::now();
+  auto last_progress = wall_start;
+  auto elapsed = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  };
+  Totals totals = initial;
+  while (t < t_end) {
+    // dt = min(stable dt, growth * dt_prev, next output time, t_end) (DESIGN §3)
+    double dt = limit.val;
+    const char* reason = limitReason(limit);
+    if (step == 0) {
+      dt *= numerics.dt_initial_factor;
+      reason = "initial";
+    } else if (numerics.dt_growth * dt_prev < dt) {
+      dt = numerics.dt_growth * dt_prev;
+      reason = "growth";
+    }
+    if (!pending_outputs.empty() && t + dt >= pending_outputs.front()) {
+      dt = pending_outputs.front() - t;
+      reason = "output";
+    }
+    if (t + dt >= t_end) {
+      dt = t_end - t;
+      reason = "end";
+    }
+    if (step >= numerics.max_steps) {
+      result.failure = "step " + std::to_string(step) + ": numerics.max_steps reached at t = " +
+                       std::to_string(t);
+    } else if (dt < numerics.dt_min && reason != std::string("end") &&
+               reason != std::string("output")) {
+      result.failure = "step " + std::to_string(step + 1) + ": time step collapse, dt = " +
+                       std::to_string(dt) + " (" + reason + " limited, cell " +
+                       std::to_string(limit.loc / kLimitCodes) + ")";
+    }
+    if (!result.failure.empty()) break;
+
+    try {
+      lagrange.advance(dt, step + 1);
+      limit = lagrange.computeGeometry();  // state at t^{n+1}, next step's candidates
+      if (limit.val < 0.0) throw RunFailure(describeInvalidCell(limit, step + 1, "end of step"));
+    } catch (const RunFailure& failure) {
+      lagrange.restoreStartOfStep();
+      result.failure = failure.what();
+      break;
+    }
+    t = (reason == std::string("end")) ? t_end : t + dt;
+    dt_prev = dt;
+    ++step;
+    if (!pending_outputs.empty() && reason == std::string("output")) {
+      t = pending_outputs.front();
+      pending_outputs.erase(pending_outputs.begin());
+      snapshot(t);
+    } else if (options.output_every > 0 && step % options.output_every == 0 && t < t_end) {
+      snapshot(t);
+    }
+    {
+      auto scope = timers.scope(Phase::Diagnostics);
+      const BoundaryPower boundary = computeBoundaryPower(mesh, state);
+      impulse += dt * boundary.force;
+      work += dt * boundary.power;
+      totals = computeTotals(mesh, state);
+    }
+    writeHistory(step, t, dt, reason, totals);
+    if (!options.quiet) {
+      const auto now = std::chrono::steady_clock::now();
+      if (std::chrono::duration<double>(now - last_progress).count() > 3.0) {
+        last_progress = now;
+        const double seconds = elapsed();
+        std::fprintf(stderr, "[lagremap] %5.1f%%  step %ld  t %.6g  dt %.3g (%s)  ETA %s\n",
+                     100.0 * t / t_end, step, t, dt, reason,
+                     formatSeconds(seconds * (t_end - t) / t).c_str());
+      }
+    }
+  }
+  result.wall_seconds = elapsed();
+  result.failed = !result.failure.empty();
+  result.steps = step;
+  result.time = t;
+  result.cell_steps_per_second = step > 0 ? double(mesh.n_cells) * step / result.wall_seconds : 0;
+
+  // --- conservation audit: change of each total minus what the boundaries put in.
+  const double energy_scale = std::max(std::abs(initial.total()), 1e-300);
+  const double momentum_scale = std::max(std::sqrt(2.0 * initial.mass * energy_scale), 1e-300);
+  result.drift_mass = std::abs(totals.mass - initial.mass) / initial.mass;
+  result.drift_momentum = norm(totals.momentum - initial.momentum - impulse) / momentum_scale;
+  result.drift_energy = std::abs(totals.total() - initial.total() - work) / energy_scale;
+
+  result.fields = copyFields(setup, state, t);
+  for (Index c = 0; c < mesh.n_cells; ++c) {
+    result.max_transverse_velocity =
+        std::max({result.max_transverse_velocity, std::abs(result.fields.v(c, 1)),
+                  std::abs(result.fields.v(c, 2))});
+  }
+  if (!result.failed) result.checks = problem.finish(config, result.fields, options.write_files ? dir : "");
+  if (!options.write_files) return result;
+
+  {
+    auto scope = timers.scope(Phase::Output);
+    writeSnapshot(*snapshots, result.fields);
+  }
+  // --- summary.json
+  std::ofstream out(dir + "/summary.json");
+  JsonWriter json(out);
+  json.beginObject()
+      .value("problem", options.problem)
+      .value("mode", options.mode)
+      .value("order", numerics.order)
+      .value("gather", config.text("numerics.gather"))
+      .value("threads", long(ExecSpace().concurrency()))
+      .value("execution_space", ExecSpace::name())
+      .value("cells", long(mesh.n_cells))
+      .value("nodes", long(mesh.n_nodes))
+      .value("steps", step)
+      .value("t_end", t_end)
+      .value("t_final", t)
+      .value("status", result.failed ? "failed" : "completed");
+  if (result.failed) json.value("failure", result.failure);
+  json.value("wall_seconds", result.wall_seconds);
+  json.beginObject("cell_steps_per_second").value("total", result.cell_steps_per_second);
+  json.beginObject("phases");
+  for (int phase = 0; phase < int(Phase::Count); ++phase) {
+    const double seconds = timers.seconds(Phase(phase));
+    json.value(phaseName(Phase(phase)), seconds > 0 ? double(mesh.n_cells) * step / seconds : 0.0);
+  }
+  json.endObject().endObject();
+  json.beginObject("phase_seconds");
+  for (int phase = 0; phase < int(Phase::Count); ++phase) {
+    json.value(phaseName(Phase(phase)), timers.seconds(Phase(phase)));
+  }
+  json.endObject();
+  json.beginObject("drift")
+      .value("mass", result.drift_mass)
+      .value("momentum", result.drift_momentum)
+      .value("total_energy", result.drift_energy)
+      .value("note", "relative; boundary impulse and work subtracted (conservation audit)")
+      .endObject();
+  json.beginObject("totals")
+      .value("mass", totals.mass)
+      .value("kinetic_energy", totals.kinetic)
+      .value("internal_energy", totals.internal)
+      .value("boundary_work", work)
+      .endObject();
+  json.beginObject("checks");
+  for (const auto& check : result.checks) {
+    json.beginObject(check.name)
+        .value("value", check.value)
+        .value("reference", check.reference)
+        .value("tolerance", check.tolerance)
+        .value("pass", check.pass())
+        .value("note", check.note)
+        .endObject();
+  }
+  json.endObject();
+  json.beginObject("config");
+  for (const auto& [key, param] : config.params()) json.value(key, param.value);
+  json.endObject();
+  json.endObject();
+  return result;
+}
+
+}  // namespace lagremap

@@ -1,0 +1,47 @@
+// The run driver: builds a problem from its configuration, runs the time loop,
+// and writes summary.json, history.csv, snapshots and the problem's CSVs.
+// Everything main() does, callable from tests.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "config.hpp"
+#include "problem.hpp"
+
+namespace lagremap {
+
+struct RunOptions {
+  std::string problem;
+  std::string mode = "lagrange";
+  Config config;  // fully resolved keys (see makeConfig)
+  std::string output_dir;
+  std::vector<double> output_times;  // snapshot times (besides the first and last state)
+  long output_every = 0;             // snapshot every N steps (0: never)
+  bool quiet = false;                // no progress line
+  bool write_files = true;           // false: no output directory at all (benchmarks, tests)
+};
+
+// Every key a run has: the common numerics keys plus the problem's.
+Config declareConfig(const Problem& problem);
+
+struct RunResult {
+  long steps = 0;
+  double time = 0.0;
+  double wall_seconds = 0.0;
+  long cells = 0;
+  double cell_steps_per_second = 0.0;
+  bool failed = false;
+  std::string failure;
+  std::vector<Check> checks;
+  double drift_mass = 0.0, drift_momentum = 0.0, drift_energy = 0.0;
+  double max_transverse_velocity = 0.0;
+  FinalFields fields;  // host copies of the final (or last good) state
+  bool checksPass() const;
+};
+
+// Runs a problem. Bad configuration throws ConfigError (exit code 2); a failure
+// mid-way is returned in RunResult::failed after the last good state is written.
+RunResult runProblem(const RunOptions& options);
+
+}  // namespace lagremap

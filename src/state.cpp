@@ -1,0 +1,38 @@
+#include "state.hpp"
+
+namespace lagremap {
+
+State allocateState(const Mesh& mesh, bool with_atomics_gather) {
+  const Index nc = mesh.n_cells, nn = mesh.n_nodes, ncorner = 8 * mesh.n_cells;
+  State s;
+  auto cells = [&](const char* name) { return RealView(std::string("lagremap::state::") + name, nc); };
+  auto cells3 = [&](const char* name) { return Vec3View(std::string("lagremap::state::") + name, nc); };
+  s.m_c = cells("m_c");
+  s.v_c = cells3("v_c");
+  s.E_c = cells("E_c");
+  s.mat_c = DeviceView<int*>("lagremap::state::mat_c", nc);
+  s.vol_c = cells("vol_c");
+  s.rho_c = cells("rho_c");
+  s.e_c = cells("e_c");
+  s.p_c = cells("p_c");
+  s.aL_c = cells("aL_c");
+  s.aT_c = cells("aT_c");
+  s.len_c = cells("len_c");
+  s.x_c = cells3("x_c");
+  s.dvdt_c = cells("dvdt_c");
+  s.x_n0 = Vec3View("lagremap::state::x_n0", nn);
+  s.v_c0 = cells3("v_c0");
+  s.E_c0 = cells("E_c0");
+  s.A_cp = Vec3View("lagremap::state::A_cp", ncorner);
+  s.M_cp = Sym6View("lagremap::state::M_cp", ncorner);
+  s.B_cp = Vec3View("lagremap::state::B_cp", ncorner);
+  s.v_n = Vec3View("lagremap::state::v_n", nn);
+  s.f_ext_n = Vec3View("lagremap::state::f_ext_n", nn);
+  if (with_atomics_gather) {
+    s.M_n = Sym6View("lagremap::state::M_n", nn);
+    s.B_n = Vec3View("lagremap::state::B_n", nn);
+  }
+  return s;
+}
+
+}  // namespace lagremap

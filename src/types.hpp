@@ -1,0 +1,32 @@
+// Every View alias, the execution and memory spaces, and the scalar/index types
+// used by lagremap (STYLE §2). Views use the default layout of the execution
+// space's memory (LayoutRight on host, LayoutLeft on CUDA/HIP), so the same
+// kernels are coalesced on GPUs and cache-friendly on CPUs.
+#pragma once
+
+#include <Kokkos_Core.hpp>
+
+namespace lagremap {
+
+using Real = double;
+using Index = int;  // cells, nodes and corners of one rank stay below 2^31
+
+using ExecSpace = Kokkos::DefaultExecutionSpace;
+using MemSpace = ExecSpace::memory_space;
+using HostSpace = Kokkos::HostSpace;
+
+template <class DataType>
+using DeviceView = Kokkos::View<DataType, MemSpace>;
+
+using RealView = DeviceView<Real*>;            // one value per cell or node
+using Vec3View = DeviceView<Real* [3]>;        // x, y, z per entity
+using Sym6View = DeviceView<Real* [6]>;        // xx, yy, zz, xy, yz, xz per entity
+using IndexView = DeviceView<Index*>;          // CRS offsets and lists
+using CellNodesView = DeviceView<Index* [8]>;  // VTK_HEXAHEDRON node order
+using CellFacesView = DeviceView<Index* [6]>;  // per hex face (see kernels/hex.hpp)
+
+constexpr int kNodesPerCell = 8;
+constexpr int kFacesPerCell = 6;
+constexpr int kNodesPerFace = 4;
+
+}  // namespace lagremap
