@@ -12,10 +12,14 @@ namespace lagremap::hex {
 // Local nodes of face f, ordered so that the right-hand rule points out of the
 // cell. Face f lies on box side f of a generated block: 0 x-, 1 x+, 2 y-, 3 y+,
 // 4 z-, 5 z+.
+// The table {0,4,7,3}, {1,2,6,5}, {0,1,5,4}, {3,7,6,2}, {0,3,2,1}, {4,5,6,7} is
+// packed 4 bits an entry into two integer constants: no memory table, so it
+// folds to immediates on every backend.
 KOKKOS_INLINE_FUNCTION int faceNode(int f, int k) {
-  const int face_nodes[6][4] = {{0, 4, 7, 3}, {1, 2, 6, 5}, {0, 1, 5, 4},
-                                {3, 7, 6, 2}, {0, 3, 2, 1}, {4, 5, 6, 7}};
-  return face_nodes[f][k];
+  constexpr unsigned long long faces_0_to_3 = 0x2673'4510'5621'3740ULL;
+  constexpr unsigned long long faces_4_to_5 = 0x7654'1230ULL;
+  const unsigned long long packed = f < 4 ? faces_0_to_3 : faces_4_to_5;
+  return int((packed >> (16 * (f & 3) + 4 * k)) & 0xFULL);
 }
 
 // Corner-face area vectors of one face (DESIGN §2):

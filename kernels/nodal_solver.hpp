@@ -98,14 +98,18 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
           const Vec3 grad_vx = inv * rhs_vx, grad_vy = inv * rhs_vy, grad_vz = inv * rhs_vz;
           const Vec3 grad_p = inv * rhs_p;
           // Barth-Jespersen (beta = 1) per variable, over the 8 vertices.
-          double phi_vx = 1.0, phi_vy = 1.0, phi_vz = 1.0, phi_p = 1.0;
+          VertexExcursion ex_vx, ex_vy, ex_vz, ex_p;
           for (int p = 0; p < 8; ++p) {
             const Vec3 d = x[p] - centroid;
-            phi_vx = math::fmin(phi_vx, vertexLimiter(dot(grad_vx, d), v_cell.x, vx, 1.0));
-            phi_vy = math::fmin(phi_vy, vertexLimiter(dot(grad_vy, d), v_cell.y, vy, 1.0));
-            phi_vz = math::fmin(phi_vz, vertexLimiter(dot(grad_vz, d), v_cell.z, vz, 1.0));
-            phi_p = math::fmin(phi_p, vertexLimiter(dot(grad_p, d), p_cell, pb, 1.0));
+            ex_vx.include(dot(grad_vx, d));
+            ex_vy.include(dot(grad_vy, d));
+            ex_vz.include(dot(grad_vz, d));
+            ex_p.include(dot(grad_p, d));
           }
+          const double phi_vx = cellLimiter(ex_vx, v_cell.x, vx, 1.0);
+          const double phi_vy = cellLimiter(ex_vy, v_cell.y, vy, 1.0);
+          const double phi_vz = cellLimiter(ex_vz, v_cell.z, vz, 1.0);
+          const double phi_p = cellLimiter(ex_p, p_cell, pb, 1.0);
           for (int p = 0; p < 8; ++p) {
             const Vec3 d = x[p] - centroid;
             v_node[p] = v_cell + Vec3{phi_vx * dot(grad_vx, d), phi_vy * dot(grad_vy, d),

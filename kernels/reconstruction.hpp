@@ -39,6 +39,26 @@ struct Bounds {
   }
 };
 
+// Largest rise and fall of the unlimited reconstruction over a cell's vertices.
+struct VertexExcursion {
+  double rise = 0.0, fall = 0.0;  // max(psi_p - psi_c, 0), min(psi_p - psi_c, 0)
+  KOKKOS_INLINE_FUNCTION void include(double delta) {
+    rise = delta > rise ? delta : rise;
+    fall = delta < fall ? delta : fall;
+  }
+};
+
+// min over the vertices of vertexLimiter() below, with two divisions instead of
+// one per vertex: the ratio (bound - psi_c) / delta is smallest for the largest
+// rise (resp. fall), so only the extreme vertices matter.
+KOKKOS_INLINE_FUNCTION double cellLimiter(const VertexExcursion& excursion, double center,
+                                          const Bounds& bounds, double beta) {
+  double limiter = beta;
+  if (excursion.rise > 0.0) limiter = math::fmin(limiter, (bounds.hi - center) / excursion.rise);
+  if (excursion.fall < 0.0) limiter = math::fmin(limiter, (bounds.lo - center) / excursion.fall);
+  return limiter;
+}
+
 // Limiter factor of one vertex (DESIGN §5):
 //   min((psi_max - psi_c)/(psi_p - psi_c), beta) if psi_p > psi_c, min((psi_min - psi_c)/..., beta)
 //   if psi_p < psi_c, beta otherwise. beta = 1: Barth-Jespersen; beta = 2: compressive.

@@ -76,8 +76,8 @@ ProblemSetup setupSod(const Config& config) {
 // with a 30% margin, scaled with the observed convergence rate of each order
 // (README, Verification).
 double defaultDensityBound(int order, int nx) {
-  const double error_at_200 = order >= 2 ? 2.6e-3 : 5.4e-3;
-  const double rate = order >= 2 ? 0.75 : 0.7;
+  const double error_at_200 = order >= 2 ? 2.67e-3 : 1.21e-2;
+  const double rate = order >= 2 ? 0.95 : 0.65;
   return 1.3 * error_at_200 * std::pow(200.0 / nx, rate);
 }
 

@@ -7,7 +7,7 @@
 //  - physics of each wave in the sampled solution: Rankine-Hugoniot jumps across shocks,
 //    isentropic and Riemann invariants and characteristic speeds inside fans;
 //  - global conservation of mass, momentum and energy of the sampled solution.
-#include "exact_riemann.hpp"
+#include "src/exact_riemann.hpp"
 
 #include <gtest/gtest.h>
 
@@ -279,7 +279,7 @@ TEST_P(ExactRiemannWaves, ShocksSatisfyRankineHugoniot) {
                           solution.sample(0.5 * (solution.u_star + speed)), solution.gamma_right,
                           speed);
   }
-  if (!solution.left_is_shock && !solution.right_is_shock) GTEST_SKIP() << "no shock";
+  // A two-fan case has no shock; RarefactionFansAreIsentropic covers it.
 }
 
 // Inside a fan of family direction (-1 left, +1 right): entropy p / rho^gamma and the Riemann
@@ -342,7 +342,7 @@ TEST_P(ExactRiemannWaves, RarefactionsAreIsentropicSimpleWaves) {
                         solution.right_head_speed, solution.right_tail_speed,
                         {solution.rho_star_right, solution.u_star, solution.p_star});
   }
-  if (solution.left_is_shock && solution.right_is_shock) GTEST_SKIP() << "no rarefaction";
+  // A two-shock case has no fan; ShocksSatisfyRankineHugoniot covers it.
 }
 
 // Integral over [-1, 1] of the conserved variables of the sampled solution at time t (initial

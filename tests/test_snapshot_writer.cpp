@@ -2,7 +2,7 @@
 //
 // Set LAGREMAP_TEST_KEEP_OUTPUT=1 to keep the written series (the directory is printed),
 // e.g. to open it with `pvpython scripts/check_xdmf.py <dir>/block.xmf`.
-#include "io/snapshot_writer.hpp"
+#include "src/io/snapshot_writer.hpp"
 
 #include <gtest/gtest.h>
 #include <hdf5.h>
