@@ -67,45 +67,6 @@ Numerics readNumerics(const Config& config) {
   return numerics;
 }
 
-// Uploads the problem's initial cells: m = rho v (v from the same geometry
-// kernel the run uses), E = e + |V|^2 / 2.
-void initializeState(const ProblemSetup& setup, State& state) {
-  const Index n_cells = setup.mesh.n_cells;
-  const InitialCells& cells = setup.cells;
-  if (Index(cells.rho.size()) != n_cells || Index(cells.e.size()) != n_cells ||
-      Index(cells.v.size()) != n_cells || Index(cells.mat.size()) != n_cells) {
-    throw std::logic_error("problem set-up gave initial data of the wrong size");
-  }
-  std::vector<double> volume;
-  std::vector<Vec3> centroid;
-  hostCellShapes(copyToHost(setup.mesh), volume, centroid);
-  auto m_host = Kokkos::create_mirror_view(state.m_c);
-  auto v_host = Kokkos::create_mirror_view(state.v_c);
-  auto E_host = Kokkos::create_mirror_view(state.E_c);
-  auto mat_host = Kokkos::create_mirror_view(state.mat_c);
-  for (Index c = 0; c < n_cells; ++c) {
-    if (!(cells.rho[c] > 0.0) || !(volume[c] > 0.0)) {
-      throw ConfigError("initial state: cell " + std::to_string(c) +
-                        " has a non-positive density or volume");
-    }
-    if (cells.mat[c] < 0 || cells.mat[c] >= int(setup.materials.size())) {
-      throw std::logic_error("problem set-up gave an unknown material index");
-    }
-    m_host(c) = cells.rho[c] * volume[c];
-    storeVec3(v_host, c, cells.v[c]);
-    E_host(c) = cells.e[c] + 0.5 * dot(cells.v[c], cells.v[c]);
-    mat_host(c) = cells.mat[c];
-  }
-  Kokkos::deep_copy(state.m_c, m_host);
-  Kokkos::deep_copy(state.v_c, v_host);
-  Kokkos::deep_copy(state.E_c, E_host);
-  Kokkos::deep_copy(state.mat_c, mat_host);
-  state.materials = MaterialView("lagremap::state::materials", setup.materials.size());
-  auto materials_host = Kokkos::create_mirror_view(state.materials);
-  for (std::size_t k = 0; k < setup.materials.size(); ++k) materials_host(k) = setup.materials[k];
-  Kokkos::deep_copy(state.materials, materials_host);
-}
-
 FinalFields copyFields(const ProblemSetup& setup, const State& state, double time) {
   FinalFields fields;
   fields.time = time;
@@ -158,6 +119,45 @@ std::string formatSeconds(double seconds) {
 }
 
 }  // namespace
+
+// Uploads the problem's initial cells: m = rho v (v from the same geometry
+// kernel the run uses), E = e + |V|^2 / 2.
+void initializeState(const ProblemSetup& setup, State& state) {
+  const Index n_cells = setup.mesh.n_cells;
+  const InitialCells& cells = setup.cells;
+  if (Index(cells.rho.size()) != n_cells || Index(cells.e.size()) != n_cells ||
+      Index(cells.v.size()) != n_cells || Index(cells.mat.size()) != n_cells) {
+    throw std::logic_error("problem set-up gave initial data of the wrong size");
+  }
+  std::vector<double> volume;
+  std::vector<Vec3> centroid;
+  hostCellShapes(copyToHost(setup.mesh), volume, centroid);
+  auto m_host = Kokkos::create_mirror_view(state.m_c);
+  auto v_host = Kokkos::create_mirror_view(state.v_c);
+  auto E_host = Kokkos::create_mirror_view(state.E_c);
+  auto mat_host = Kokkos::create_mirror_view(state.mat_c);
+  for (Index c = 0; c < n_cells; ++c) {
+    if (!(cells.rho[c] > 0.0) || !(volume[c] > 0.0)) {
+      throw ConfigError("initial state: cell " + std::to_string(c) +
+                        " has a non-positive density or volume");
+    }
+    if (cells.mat[c] < 0 || cells.mat[c] >= int(setup.materials.size())) {
+      throw std::logic_error("problem set-up gave an unknown material index");
+    }
+    m_host(c) = cells.rho[c] * volume[c];
+    storeVec3(v_host, c, cells.v[c]);
+    E_host(c) = cells.e[c] + 0.5 * dot(cells.v[c], cells.v[c]);
+    mat_host(c) = cells.mat[c];
+  }
+  Kokkos::deep_copy(state.m_c, m_host);
+  Kokkos::deep_copy(state.v_c, v_host);
+  Kokkos::deep_copy(state.E_c, E_host);
+  Kokkos::deep_copy(state.mat_c, mat_host);
+  state.materials = MaterialView("lagremap::state::materials", setup.materials.size());
+  auto materials_host = Kokkos::create_mirror_view(state.materials);
+  for (std::size_t k = 0; k < setup.materials.size(); ++k) materials_host(k) = setup.materials[k];
+  Kokkos::deep_copy(state.materials, materials_host);
+}
 
 RunResult runProblem(const RunOptions& options) {
   const Problem& problem = findProblem(options.problem);

@@ -40,6 +40,10 @@ struct RunResult {
   bool checksPass() const;
 };
 
+// Uploads a problem's initial cells into an allocated state: m = rho v (v from
+// the same geometry the kernels use), E = e + |V|^2 / 2, and the material table.
+void initializeState(const ProblemSetup& setup, State& state);
+
 // Runs a problem. Bad configuration throws ConfigError (exit code 2); a failure
 // mid-way is returned in RunResult::failed after the last good state is written.
 RunResult runProblem(const RunOptions& options);
