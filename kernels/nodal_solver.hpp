@@ -3,7 +3,9 @@
 //                       the corner impedance M_cp = sum_f s_pf Q_cfp and
 //                       B_cp = M_cp V_c(p) - sigma_c(p) A_cp;
 //   nodalSolve:         per node, M_p V_p = B_p + external load under the
-//                       velocity constraints, then move the node;
+//                       velocity constraints, and the node's new position
+//                       (into x_n_next: x_n is still read for the traction
+//                       load of neighbouring nodes; the caller swaps them);
 //   updateCells:        per cell, F_cp = M_cp V_p - B_cp, momentum and energy.
 // The node sums use the node->corner CRS by default (race-free, bit-for-bit
 // reproducible for any thread count); `Gather::Atomics` scatters instead.
@@ -186,7 +188,7 @@ KOKKOS_INLINE_FUNCTION SymMat3 constrainedMatrix(const SymMat3& projector, const
 
 }  // namespace detail
 
-// Solves every node and moves it: x_n = x_n0 + dt_stage V_n.
+// Solves every node and finds where it moves: x_n_next = x_n0 + dt_stage V_n.
 inline void nodalSolve(const Mesh& mesh, const State& state, const CornerControls& controls,
                        double dt_stage) {
   const auto m = mesh;
@@ -238,7 +240,7 @@ inline void nodalSolve(const Mesh& mesh, const State& state, const CornerControl
         storeVec3(s.v_n, n, velocity);
         // sum_c F_cp = M_p V_p - B_p: the wall reaction plus the traction load.
         storeVec3(s.f_ext_n, n, impedance * velocity - rhs);
-        storeVec3(m.x_n, n, loadVec3(s.x_n0, n) + dt_stage * velocity);
+        storeVec3(s.x_n_next, n, loadVec3(s.x_n0, n) + dt_stage * velocity);
       });
 }
 

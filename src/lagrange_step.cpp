@@ -1,5 +1,7 @@
 #include "lagrange_step.hpp"
 
+#include <utility>
+
 namespace lagremap {
 
 std::string describeInvalidCell(const StepLimit& limit, long step, const char* when) {
@@ -45,6 +47,7 @@ void LagrangeStep::stage(double dt_stage) {
   {
     auto scope = timers_.scope(Phase::NodalSolve);
     nodalSolve(mesh_, state_, corner_controls, dt_stage);
+    std::swap(mesh_.x_n, state_.x_n_next);  // the mesh moves: no copy, the Views trade places
   }
   {
     auto scope = timers_.scope(Phase::CellUpdate);

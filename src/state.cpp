@@ -27,6 +27,7 @@ State allocateState(const Mesh& mesh, bool with_atomics_gather) {
   s.M_cp = Sym6View("lagremap::state::M_cp", ncorner);
   s.B_cp = Vec3View("lagremap::state::B_cp", ncorner);
   s.v_n = Vec3View("lagremap::state::v_n", nn);
+  s.x_n_next = Vec3View("lagremap::state::x_n_next", nn);
   s.f_ext_n = Vec3View("lagremap::state::f_ext_n", nn);
   if (with_atomics_gather) {
     s.M_n = Sym6View("lagremap::state::M_n", nn);

@@ -1,0 +1,161 @@
+// Geometry of DESIGN §2: corner vectors are the exact derivative of the cell
+// volume (GCL) on distorted hexes with non-planar faces, they sum to zero, and
+// volume and centroid are exact on known shapes.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "kernels/geometry.hpp"
+#include "kernels/nodal_solver.hpp"
+#include "src/run.hpp"
+
+namespace lagremap {
+namespace {
+
+// Unit cube in VTK order.
+void unitCube(Vec3 x[8]) {
+  const Vec3 cube[8] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                        {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  for (int p = 0; p < 8; ++p) x[p] = cube[p];
+}
+
+// Randomly distorted hex: every node moves by up to `amplitude`, so faces are
+// non-planar; then a large offset checks round-off far from the origin.
+void distortedHex(std::mt19937& rng, double amplitude, const Vec3& offset, Vec3 x[8]) {
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  unitCube(x);
+  for (int p = 0; p < 8; ++p) {
+    x[p] = offset + x[p] + amplitude * Vec3{unit(rng), unit(rng), unit(rng)};
+  }
+}
+
+double volumeOf(const Vec3 x[8]) { return hex::cellShape(x).volume; }
+
+TEST(Geometry, CornerVectorsAreTheVolumeGradient) {
+  std::mt19937 rng(2026);
+  for (int trial = 0; trial < 50; ++trial) {
+    Vec3 x[8];
+    distortedHex(rng, 0.25, Vec3{trial * 0.1, -3.0, 7.0}, x);
+    Vec3 corner[8];
+    hex::cornerVectors(x, corner);
+    // The volume is quadratic in any single node coordinate, so the central
+    // difference is exact up to round-off.
+    const double h = 1e-3;
+    for (int p = 0; p < 8; ++p) {
+      double* coords[3] = {&x[p].x, &x[p].y, &x[p].z};
+      const double expected[3] = {corner[p].x, corner[p].y, corner[p].z};
+      for (int d = 0; d < 3; ++d) {
+        const double saved = *coords[d];
+        *coords[d] = saved + h;
+        const double v_plus = volumeOf(x);
+        *coords[d] = saved - h;
+        const double v_minus = volumeOf(x);
+        *coords[d] = saved;
+        EXPECT_NEAR((v_plus - v_minus) / (2 * h), expected[d], 1e-11)
+            << "trial " << trial << " node " << p << " direction " << d;
+      }
+    }
+  }
+}
+
+TEST(Geometry, CornerVectorsOfAClosedCellSumToZero) {
+  std::mt19937 rng(7);
+  for (int trial = 0; trial < 100; ++trial) {
+    Vec3 x[8];
+    distortedHex(rng, 0.3, Vec3{100.0, 0.0, -50.0}, x);
+    Vec3 corner[8];
+    hex::cornerVectors(x, corner);
+    Vec3 sum{0, 0, 0};
+    for (int p = 0; p < 8; ++p) sum += corner[p];
+    EXPECT_LT(norm(sum), 1e-14);
+    // Euler's theorem for the degree-3 volume: v = 1/3 sum_p (x_p - x_0) . A_p.
+    double euler = 0.0;
+    for (int p = 0; p < 8; ++p) euler += dot(x[p] - x[0], corner[p]) / 3.0;
+    EXPECT_NEAR(euler, volumeOf(x), 1e-13);
+  }
+}
+
+TEST(Geometry, AffineImagesOfTheCubeAreExact) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (int trial = 0; trial < 50; ++trial) {
+    // x = A xi + b with a well-conditioned random A (positive determinant).
+    Mat3 a = zeroMat();
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) a.m[i][j] = (i == j ? 1.5 : 0.0) + 0.3 * unit(rng);
+    const Vec3 b{5 * unit(rng), 5 * unit(rng), 5 * unit(rng)};
+    const double det = a.m[0][0] * (a.m[1][1] * a.m[2][2] - a.m[1][2] * a.m[2][1]) -
+                       a.m[0][1] * (a.m[1][0] * a.m[2][2] - a.m[1][2] * a.m[2][0]) +
+                       a.m[0][2] * (a.m[1][0] * a.m[2][1] - a.m[1][1] * a.m[2][0]);
+    ASSERT_GT(det, 0.0);
+    Vec3 x[8];
+    unitCube(x);
+    for (int p = 0; p < 8; ++p) x[p] = a * x[p] + b;
+    const hex::CellShape shape = hex::cellShape(x);
+    EXPECT_NEAR(shape.volume, det, 1e-13 * det);
+    const Vec3 centre = a * Vec3{0.5, 0.5, 0.5} + b;
+    EXPECT_LT(norm(shape.centroid - centre), 1e-13);
+  }
+}
+
+TEST(Geometry, FrustumVolumeAndCentroidAreExact) {
+  // Square frustum: side a at z = 0, side b at z = h; planar trapezoid faces.
+  const double a = 2.0, b = 0.8, h = 1.5;
+  const Vec3 x[8] = {{-a / 2, -a / 2, 0}, {a / 2, -a / 2, 0}, {a / 2, a / 2, 0},
+                     {-a / 2, a / 2, 0},  {-b / 2, -b / 2, h}, {b / 2, -b / 2, h},
+                     {b / 2, b / 2, h},   {-b / 2, b / 2, h}};
+  const hex::CellShape shape = hex::cellShape(x);
+  EXPECT_NEAR(shape.volume, h / 3 * (a * a + a * b + b * b), 1e-14);
+  const double z_centroid = h * (a * a + 2 * a * b + 3 * b * b) / (4 * (a * a + a * b + b * b));
+  EXPECT_NEAR(shape.centroid.z, z_centroid, 1e-14);
+  EXPECT_NEAR(shape.centroid.x, 0.0, 1e-15);
+  EXPECT_NEAR(shape.max_face_area, a * a, 1e-14);
+}
+
+// The device kernels on a whole perturbed mesh: cell volumes add up to the
+// box, and at every interior node the corner vectors of its cells cancel
+// (moving an interior node does not change the total volume).
+TEST(Geometry, MeshKernelsConserveVolumeAndCancelAtInteriorNodes) {
+  BlockSpec block;
+  block.nx = 7;
+  block.ny = 5;
+  block.nz = 4;
+  block.lo = {-1.0, 0.0, 2.0};
+  block.hi = {2.0, 1.0, 3.5};
+  block.perturbation = 0.3;
+  SideBoundaries walls;
+  ProblemSetup setup;
+  setup.mesh = buildBlockMesh(block, walls);
+  setup.materials = {MaterialParams{}};
+  const Index n_cells = setup.mesh.n_cells;
+  setup.cells.rho.assign(n_cells, 1.0);
+  setup.cells.e.assign(n_cells, 1.0);
+  setup.cells.v.assign(n_cells, Vec3{0, 0, 0});
+  setup.cells.mat.assign(n_cells, 0);
+  State state = allocateState(setup.mesh, false);
+  initializeState(setup, state);
+  const StepLimit limit = computeGeometry(setup.mesh, state, TimeStepControls{});
+  EXPECT_GT(limit.val, 0.0);
+  computeCornerTerms(setup.mesh, state, CornerControls{2, Gather::Crs});
+
+  auto vol = Kokkos::create_mirror_view_and_copy(HostSpace(), state.vol_c);
+  double total = 0.0;
+  for (Index c = 0; c < n_cells; ++c) total += vol(c);
+  EXPECT_NEAR(total, 3.0 * 1.0 * 1.5, 1e-13);
+
+  auto corner_vec = Kokkos::create_mirror_view_and_copy(HostSpace(), state.A_cp);
+  auto offsets = Kokkos::create_mirror_view_and_copy(HostSpace(), setup.mesh.node_corner_offsets);
+  auto corners = Kokkos::create_mirror_view_and_copy(HostSpace(), setup.mesh.node_corners);
+  int interior = 0;
+  for (Index n = 0; n < setup.mesh.n_nodes; ++n) {
+    if (offsets(n + 1) - offsets(n) != 8) continue;  // interior nodes have 8 corners
+    Vec3 sum{0, 0, 0};
+    for (Index i = offsets(n); i < offsets(n + 1); ++i) sum += loadVec3(corner_vec, corners(i));
+    EXPECT_LT(norm(sum), 1e-15) << "node " << n;
+    ++interior;
+  }
+  EXPECT_EQ(interior, 6 * 4 * 3);
+}
+
+}  // namespace
+}  // namespace lagremap
