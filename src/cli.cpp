@@ -92,13 +92,12 @@ int runCommandLine(int argc, char* argv[]) {
     // The deck may name the problem and mode; the command line wins.
     std::string deck_problem, deck_mode;
     if (!input.empty() && problem_name.empty()) {
-      Config probe;
-      try {
-        probe.loadDeck(input, &deck_problem, &deck_mode);
-      } catch (const ConfigError&) {
-        // unknown keys are reported below, once the problem's keys are known
+      Config::peekDeck(input, &problem_name, nullptr);
+      if (problem_name.empty()) {
+        // A deck with a syntax error says so (with its line) rather than "no problem".
+        Config().loadDeck(input, nullptr, nullptr);
+        return badInput("input deck '" + input + "' names no problem and --problem is not given");
       }
-      problem_name = deck_problem;
     }
     if (problem_name.empty()) return badInput("--problem is required (see --list)");
     const Problem& problem = findProblem(problem_name);

@@ -142,6 +142,16 @@ void Config::setAssignment(const std::string& assignment) {
   set(assignment.substr(0, equals), assignment.substr(equals + 1));
 }
 
+void Config::peekDeck(const std::string& path, std::string* problem, std::string* mode) {
+  try {
+    const toml::table deck = toml::parse_file(path);
+    if (problem) *problem = deck["problem"].value_or(std::string());
+    if (mode) *mode = deck["mode"].value_or(std::string());
+  } catch (const toml::parse_error&) {
+    // Syntax errors are reported by loadDeck with their line.
+  }
+}
+
 void Config::loadDeck(const std::string& path, std::string* problem, std::string* mode) {
   toml::table deck;
   try {

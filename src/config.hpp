@@ -50,6 +50,8 @@ class Config {
   // Reads a TOML deck: nested tables become dotted keys. The special keys
   // `problem` and `mode` are returned through the out parameters if present.
   void loadDeck(const std::string& path, std::string* problem, std::string* mode);
+  // Reads only the top-level `problem` and `mode` of a deck (empty if absent).
+  static void peekDeck(const std::string& path, std::string* problem, std::string* mode);
   // Multiplies every cell-count key with a value > 1 by `scale` (--scale).
   void scaleCellCounts(double scale);
 

@@ -175,7 +175,12 @@ RunResult runProblem(const RunOptions& options) {
   }
   if (options.output_every < 0) throw ConfigError("--output-every must be >= 0");
 
-  ProblemSetup setup = problem.setup(config);
+  ProblemSetup setup;
+  try {
+    setup = problem.setup(config);
+  } catch (const std::invalid_argument& error) {  // e.g. an impossible mesh
+    throw ConfigError(options.problem + ": " + error.what());
+  }
   Mesh& mesh = setup.mesh;
   State state = allocateState(mesh, numerics.gather == Gather::Atomics);
   initializeState(setup, state);

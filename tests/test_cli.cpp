@@ -1,0 +1,157 @@
+// The command line as a user meets it: malformed input gives exit code 2 and
+// one line naming the problem; a run that fails mid-way gives exit code 3, a
+// one-line reason and the last good state on disk.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "test_support.hpp"
+
+namespace lagremap {
+namespace {
+
+using testing::runLagremap;
+
+int lineCount(const std::string& text) {
+  int lines = 0;
+  for (char ch : text) lines += ch == '\n';
+  return lines + (!text.empty() && text.back() != '\n');
+}
+
+struct BadInput {
+  const char* args;
+  const char* expected;  // a word the message must contain
+};
+
+TEST(CommandLine, MalformedInputGivesExitCodeTwoAndOneLine) {
+  const std::string dir = testing::scratchDir("cli_bad");
+  const std::string deck = dir + "/broken.toml";
+  std::ofstream(deck) << "[mesh]\nnx = [1, \n";
+  const std::string wrong_key_deck = dir + "/wrong_key.toml";
+  std::ofstream(wrong_key_deck) << "problem = \"sod\"\n[mesh]\nnq = 3\n";
+  const std::string out = " --output " + dir + "/out";
+  const std::vector<BadInput> table = {
+      {"", "--problem is required"},
+      {"--problem nope", "unknown problem 'nope'"},
+      {"--problem sod --scale -1", "--scale"},
+      {"--problem sod --scale abc", "--scale"},
+      {"--problem sod --set nokey=1", "unknown key 'nokey'"},
+      {"--problem sod --set mesh.nx=abc", "mesh.nx"},
+      {"--problem sod --set mesh.nx=0", "mesh"},
+      {"--problem sod --set numerics.cfl=2", "numerics.cfl"},
+      {"--problem sod --set =3", "key=value"},
+      {"--problem sod --set bc.xmin=sticky", "bc.xmin"},
+      {"--problem sod --set left.rho=-1", "densities"},
+      {"--problem sod --order 3", "--order"},
+      {"--problem sod --mode euler", "--mode"},
+      {"--problem sod --t-end -1", "--t-end"},
+      {"--problem sod --input /nonexistent/deck.toml", "--input"},
+      {"--problem sod --bogus-flag", "bogus"},
+      {"--problem", "--problem"},
+      {"--problem sod --output-times 0.5", "output time"},
+      {"--problem sod --set gas.gamma=1", "gamma"},
+      {"--problem sod --set geometry.x_interface=3", "x_interface"},
+  };
+  for (const BadInput& bad : table) {
+    const std::string args = bad.args;
+    const bool runs_sod = args.rfind("--problem sod", 0) == 0;
+    const auto result = runLagremap(args + (runs_sod ? out : ""));
+    EXPECT_EQ(result.exit_code, 2) << bad.args << "\n" << result.output;
+    EXPECT_EQ(lineCount(result.error), 1) << bad.args << "\n" << result.error;
+    EXPECT_NE(result.error.find("lagremap: error:"), std::string::npos) << result.error;
+    EXPECT_NE(result.error.find(bad.expected), std::string::npos)
+        << bad.args << ": '" << result.error << "' does not mention '" << bad.expected << "'";
+  }
+  for (const std::string& file : {deck, wrong_key_deck}) {
+    const auto result = runLagremap("--input " + file + out);
+    EXPECT_EQ(result.exit_code, 2) << result.output;
+    EXPECT_EQ(lineCount(result.error), 1) << result.error;
+    EXPECT_NE(result.error.find(file), std::string::npos) << result.error;
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CommandLine, ListHelpAndPrintConfig) {
+  const auto list = runLagremap("--list");
+  EXPECT_EQ(list.exit_code, 0);
+  EXPECT_NE(list.output.find("sod"), std::string::npos);
+  EXPECT_NE(list.output.find("sedov"), std::string::npos);
+  const auto help = runLagremap("--help");
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_NE(help.output.find("--print-config"), std::string::npos);
+  const auto config = runLagremap("--problem sod --scale 2 --set left.p=3 --print-config");
+  EXPECT_EQ(config.exit_code, 0);
+  for (const char* line : {"mesh.nx=400", "left.p=3", "numerics.cfl=0.4", "bc.xmin=wall",
+                           "gas.gamma=1.4", "t_end=0.2", "[Pa]"}) {
+    EXPECT_NE(config.output.find(line), std::string::npos) << line << "\n" << config.output;
+  }
+}
+
+TEST(CommandLine, DeckAndCommandLineCombine) {
+  const std::string dir = testing::scratchDir("cli_deck");
+  const std::string deck = dir + "/sod.toml";
+  std::ofstream(deck) << "problem = \"sod\"\nt_end = 0.1\n[mesh]\nnx = 50\n[numerics]\norder = 1\n";
+  const auto result = runLagremap("--input " + deck + " --set mesh.nx=60 --print-config");
+  EXPECT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("t_end=0.1"), std::string::npos);
+  EXPECT_NE(result.output.find("mesh.nx=60"), std::string::npos);  // the command line wins
+  EXPECT_NE(result.output.find("numerics.order=1"), std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CommandLine, SodRunWritesSummaryWithPassingChecks) {
+  const std::string dir = testing::scratchDir("cli_sod");
+  const auto result = runLagremap("--problem sod --quiet --output " + dir);
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("FOM:"), std::string::npos);
+  std::ifstream summary(dir + "/summary.json");
+  std::stringstream text;
+  text << summary.rdbuf();
+  const std::string json = text.str();
+  for (const char* field : {"\"problem\": \"sod\"", "\"checks\"", "\"l1_density\"",
+                            "\"cell_steps_per_second\"", "\"drift\"", "\"status\": \"completed\""}) {
+    EXPECT_NE(json.find(field), std::string::npos) << field;
+  }
+  EXPECT_EQ(json.find("\"pass\": false"), std::string::npos) << json;
+  for (const char* file : {"history.csv", "sod_profile.csv", "fields.xmf", "fields_00000.h5",
+                           "fields_00001.h5"}) {
+    EXPECT_TRUE(std::filesystem::exists(dir + "/" + file)) << file;
+  }
+  std::filesystem::remove_all(dir);
+}
+
+// Mid-run failures stop with exit code 3, one line naming step and reason, and
+// the last good state written (summary with status "failed" and a snapshot).
+TEST(CommandLine, FailureMidRunGivesExitCodeThreeAndWritesLastGoodState) {
+  const std::string dir = testing::scratchDir("cli_fail");
+  struct Failure {
+    std::string args, reason;
+  };
+  const std::vector<Failure> failures = {
+      {"--problem sod --set numerics.max_steps=5", "max_steps"},
+      // A dt floor above the stable dt: the step collapses below it at once.
+      {"--problem sod --set numerics.dt_min_fraction=0.5", "time step collapse"},
+      // Ten times the stable step tangles the mesh (or drives energies negative).
+      {"--problem sedov --scale 0.3 --set numerics.cfl=1 --set numerics.dt_initial_factor=1 "
+       "--set numerics.dt_growth=10 --set numerics.c_vol=0.99 --set numerics.order=1",
+       "cell"},
+  };
+  int index = 0;
+  for (const Failure& failure : failures) {
+    const std::string out = dir + "/f" + std::to_string(index++);
+    const auto result = runLagremap(failure.args + " --quiet --output " + out);
+    EXPECT_EQ(result.exit_code, 3) << failure.args << "\n" << result.output;
+    EXPECT_EQ(lineCount(result.error), 1) << result.error;
+    EXPECT_NE(result.error.find(failure.reason), std::string::npos) << result.error;
+    EXPECT_NE(result.error.find("step"), std::string::npos) << result.error;
+    std::ifstream summary(out + "/summary.json");
+    std::stringstream text;
+    text << summary.rdbuf();
+    EXPECT_NE(text.str().find("\"status\": \"failed\""), std::string::npos) << out;
+    EXPECT_TRUE(std::filesystem::exists(out + "/fields_00001.h5")) << out;
+  }
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace lagremap
