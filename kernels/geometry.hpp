@@ -1,7 +1,10 @@
 // Geometry phase (DESIGN §2-3): from the node positions, every cell's volume,
-// centroid and length, then its density, internal energy, pressure and sound
-// speeds (the thermodynamic closure needs only cell-local data, so it is fused
-// here), and the cell's time-step candidates reduced to the most restrictive.
+// centroid, length and corner vectors A_cp; then its density, internal energy,
+// pressure and sound speeds, and the corner impedance of the nodal solver
+//   M_cp = sum_f s_pf Q_cfp,  s_pf Q_cfp = rho [aL s n (x) n + aT s (I - n (x) n)];
+// all need only cell-local data, so one sweep does them while the 24
+// corner-face vectors are at hand. The cell's time-step candidates are reduced
+// to the most restrictive.
 #pragma once
 
 #include "../src/mesh.hpp"
@@ -29,25 +32,49 @@ inline StepLimit computeGeometry(const Mesh& mesh, const State& state,
       KOKKOS_LAMBDA(const Index c, StepLimit& best) {
         Vec3 x[8];
         gatherCellNodes(cell_nodes, x_n, c, x);
-        const hex::CellShape shape = hex::cellShape(x);
-        s.vol_c(c) = shape.volume;
-        storeVec3(s.x_c, c, shape.centroid);
-        const double length = shape.volume / shape.max_face_area;
+        hex::CellGeometry geo;
+        hex::cellGeometry(x, geo);
+        const double volume = geo.shape.volume;
+        s.vol_c(c) = volume;
+        storeVec3(s.x_c, c, geo.shape.centroid);
+        const double length = volume / geo.shape.max_face_area;
         s.len_c(c) = length;
 
         const Vec3 v = loadVec3(s.v_c, c);
-        const double rho = s.m_c(c) / shape.volume;
+        const double rho = s.m_c(c) / volume;
         const double e = s.E_c(c) - 0.5 * dot(v, v);
         const ThermoState thermo = evaluateEos(s.materials(s.mat_c(c)), rho, e);
+        const double aL = thermo.sound_speed2 > 0.0 ? math::sqrt(thermo.sound_speed2) : 0.0;
+        const double aT = 0.0;  // fluids carry no transverse impedance
         s.rho_c(c) = rho;
         s.e_c(c) = e;
         s.p_c(c) = thermo.pressure;
-        s.aL_c(c) = thermo.sound_speed2 > 0.0 ? math::sqrt(thermo.sound_speed2) : 0.0;
-        s.aT_c(c) = 0.0;  // fluids carry no transverse impedance
+        s.aL_c(c) = aL;
+        s.aT_c(c) = aT;
+
+        // Corner impedance (DESIGN §3, nodal solver).
+        SymMat3 impedance[8];
+        for (int p = 0; p < 8; ++p) impedance[p] = identitySym(0.0);
+        const double rho_aL = rho * aL, rho_aT = rho * aT;
+        for (int f = 0; f < 6; ++f) {
+          for (int k = 0; k < 4; ++k) {
+            const Vec3& w = geo.corner_face[f][k];
+            const double area2 = dot(w, w);
+            if (!(area2 > 0.0)) continue;  // degenerate corner face carries no impedance
+            const double area = math::sqrt(area2);
+            SymMat3& m = impedance[hex::faceNode(f, k)];
+            m += outerSelf(w, (rho_aL - rho_aT) / area);
+            if (rho_aT != 0.0) m += identitySym(rho_aT * area);
+          }
+        }
+        for (int p = 0; p < 8; ++p) {
+          storeVec3(s.A_cp, 8 * c + p, geo.corner[p]);
+          storeSym(s.M_cp, 8 * c + p, impedance[p]);
+        }
 
         const bool finite_state =
             math::isfinite(e) && math::isfinite(thermo.pressure) && math::isfinite(rho);
-        cellStepLimit(best, controls, c, shape.volume, length, thermo.sound_speed2, s.dvdt_c(c),
+        cellStepLimit(best, controls, c, volume, length, thermo.sound_speed2, s.dvdt_c(c),
                       finite_state);
       },
       StepLimitReducer(limit));

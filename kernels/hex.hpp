@@ -22,21 +22,26 @@ KOKKOS_INLINE_FUNCTION int faceNode(int f, int k) {
   return int((packed >> (16 * (f & 3) + 4 * k)) & 0xFULL);
 }
 
-// Corner-face area vectors of one face (DESIGN §2):
-//   s_pf n_pf = 1/3 ( sum of the 2 triangles holding p + 1/4 sum of the 4 triangles )
-// q: the 4 face nodes in outward order; w[k]: vector of node q[k].
-// Returns the face's total area vector (sum of its 4 triangles).
-KOKKOS_INLINE_FUNCTION Vec3 faceCornerVectors(const Vec3 q[4], Vec3 w[4]) {
+// Area vectors s_t n_t = 1/2 (b - a) x (c - a) of the 4 triangles
+// (q_k, q_k+1, face point) of a face; q: the 4 face nodes in outward order.
+KOKKOS_INLINE_FUNCTION void faceTriangles(const Vec3 q[4], Vec3 tri[4]) {
   const Vec3 face_point = 0.25 * (q[0] + q[1] + q[2] + q[3]);
-  Vec3 tri[4];  // triangle (q_k, q_k+1, face_point), area vector 1/2 (b-a) x (c-a)
-  for (int k = 0; k < 4; ++k) {
-    tri[k] = 0.5 * cross(q[(k + 1) & 3] - q[k], face_point - q[k]);
-  }
+  for (int k = 0; k < 4; ++k) tri[k] = 0.5 * cross(q[(k + 1) & 3] - q[k], face_point - q[k]);
+}
+
+// Corner-face area vectors from the triangles (DESIGN §2):
+//   s_pf n_pf = 1/3 ( sum of the 2 triangles holding p + 1/4 sum of the 4 triangles )
+// w[k]: vector of node q[k]. Returns the face's total area vector.
+KOKKOS_INLINE_FUNCTION Vec3 cornerVectorsOfTriangles(const Vec3 tri[4], Vec3 w[4]) {
   const Vec3 face_area = tri[0] + tri[1] + tri[2] + tri[3];
-  for (int k = 0; k < 4; ++k) {
-    w[k] = (1.0 / 3.0) * (tri[(k + 3) & 3] + tri[k] + 0.25 * face_area);
-  }
+  for (int k = 0; k < 4; ++k) w[k] = (1.0 / 3.0) * (tri[(k + 3) & 3] + tri[k] + 0.25 * face_area);
   return face_area;
+}
+
+KOKKOS_INLINE_FUNCTION Vec3 faceCornerVectors(const Vec3 q[4], Vec3 w[4]) {
+  Vec3 tri[4];
+  faceTriangles(q, tri);
+  return cornerVectorsOfTriangles(tri, w);
 }
 
 // Gathers the 4 nodes of face f from the 8 cell nodes.
@@ -78,6 +83,42 @@ KOKKOS_INLINE_FUNCTION CellShape cellShape(const Vec3 x[8]) {
   }
   const Vec3 centroid = origin + (1.0 / volume) * first_moment;
   return {volume, centroid, math::sqrt(max_area2)};
+}
+
+// Everything the Lagrangian phase needs from one cell's geometry in a single
+// sweep over its 24 triangles: the 24 corner-face vectors (for the nodal
+// impedance), their sums per node A_cp, and the volume, centroid and max face
+// area. A tetrahedron (origin, a, b, face point) has volume 1/3 (a - origin) . s_t n_t,
+// so the triangle area vectors serve both.
+struct CellGeometry {
+  Vec3 corner_face[6][4];  // s_pf n_pf of face f at its k-th node (hex::faceNode(f, k))
+  Vec3 corner[8];          // A_cp = sum_f s_pf n_pf
+  CellShape shape;
+};
+
+KOKKOS_INLINE_FUNCTION void cellGeometry(const Vec3 x[8], CellGeometry& g) {
+  const Vec3 origin = x[0];
+  double volume = 0.0, max_area2 = 0.0;
+  Vec3 first_moment{0.0, 0.0, 0.0};  // relative to origin
+  for (int p = 0; p < 8; ++p) g.corner[p] = Vec3{0.0, 0.0, 0.0};
+  for (int f = 0; f < 6; ++f) {
+    Vec3 q[4];
+    for (int k = 0; k < 4; ++k) q[k] = x[faceNode(f, k)] - origin;
+    Vec3 tri[4];
+    faceTriangles(q, tri);
+    const Vec3 face_area = cornerVectorsOfTriangles(tri, g.corner_face[f]);
+    const Vec3 face_point = 0.25 * (q[0] + q[1] + q[2] + q[3]);
+    for (int k = 0; k < 4; ++k) {
+      // tet (origin, q_k, q_k+1, face point): 1/3 q_k . s_t n_t
+      const double tet_volume = dot(q[k], tri[k]) / 3.0;
+      volume += tet_volume;
+      first_moment += (0.25 * tet_volume) * (q[k] + q[(k + 1) & 3] + face_point);
+      g.corner[faceNode(f, k)] += g.corner_face[f][k];
+    }
+    const double area2 = dot(face_area, face_area);
+    max_area2 = area2 > max_area2 ? area2 : max_area2;
+  }
+  g.shape = {volume, origin + (1.0 / volume) * first_moment, math::sqrt(max_area2)};
 }
 
 // The 8 corner vectors A_cp = sum_f s_pf n_pf = d v_c / d x_p (GCL, DESIGN §2).

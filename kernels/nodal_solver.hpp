@@ -1,6 +1,6 @@
-// Nodal solver and corner forces (DESIGN §3), in three kernels per stage:
-//   computeCornerTerms: per cell, reconstruct V and sigma at the nodes and build
-//                       the corner impedance M_cp = sum_f s_pf Q_cfp and
+// Nodal solver and corner forces (DESIGN §3), in three kernels per stage (the
+// corner vectors A_cp and impedances M_cp come from computeGeometry):
+//   computeCornerTerms: per cell, reconstruct V and sigma at the nodes and
 //                       B_cp = M_cp V_c(p) - sigma_c(p) A_cp;
 //   nodalSolve:         per node, M_p V_p = B_p + external load under the
 //                       velocity constraints, and the node's new position
@@ -60,9 +60,6 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
   Kokkos::parallel_for(
       "lagremap::corners::reconstruct_and_impedance",
       Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells), KOKKOS_LAMBDA(const Index c) {
-        Vec3 x[8];
-        for (int p = 0; p < 8; ++p) x[p] = loadVec3(x_n, cell_nodes(c, p));
-        const Vec3 centroid = loadVec3(s.x_c, c);
         const Vec3 v_cell = loadVec3(s.v_c, c);
         const double p_cell = s.p_c(c);
 
@@ -70,6 +67,9 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
         Vec3 v_node[8];
         double p_node[8];
         if (second_order) {
+          Vec3 x[8];
+          for (int p = 0; p < 8; ++p) x[p] = loadVec3(x_n, cell_nodes(c, p));
+          const Vec3 centroid = loadVec3(s.x_c, c);
           LeastSquares lsq;
           Vec3 rhs_vx{0, 0, 0}, rhs_vy{0, 0, 0}, rhs_vz{0, 0, 0}, rhs_p{0, 0, 0};
           Bounds vx(v_cell.x), vy(v_cell.y), vz(v_cell.z), pb(p_cell);
@@ -125,40 +125,16 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
           }
         }
 
-        // --- corner impedance: s_pf Q_cfp = rho [aL s n (x) n + aT s (I - n (x) n)]
-        const double rho_aL = s.rho_c(c) * s.aL_c(c);
-        const double rho_aT = s.rho_c(c) * s.aT_c(c);
-        SymMat3 impedance[8];
-        Vec3 corner_vec[8];
-        for (int p = 0; p < 8; ++p) {
-          impedance[p] = identitySym(0.0);
-          corner_vec[p] = Vec3{0, 0, 0};
-        }
-        for (int f = 0; f < 6; ++f) {
-          Vec3 q[4], w[4];
-          hex::faceNodes(x, f, q);
-          hex::faceCornerVectors(q, w);
-          for (int k = 0; k < 4; ++k) {
-            const int p = hex::faceNode(f, k);
-            corner_vec[p] += w[k];
-            const double area = norm(w[k]);
-            if (area > 0.0) {
-              impedance[p] += outerSelf(w[k], (rho_aL - rho_aT) / area);
-              impedance[p] += identitySym(rho_aT * area);
-            }
-          }
-        }
+        // --- B_cp = M_cp V_c(p) - sigma_c(p) A_cp with sigma = -p I
         for (int p = 0; p < 8; ++p) {
           const Index corner = 8 * c + p;
-          // B_cp = M_cp V_c(p) - sigma_c(p) A_cp with sigma = -p I
-          const Vec3 rhs = impedance[p] * v_node[p] + p_node[p] * corner_vec[p];
-          storeVec3(s.A_cp, corner, corner_vec[p]);
-          storeSym(s.M_cp, corner, impedance[p]);
+          const SymMat3 impedance = loadSym(s.M_cp, corner);
+          const Vec3 rhs = impedance * v_node[p] + p_node[p] * loadVec3(s.A_cp, corner);
           storeVec3(s.B_cp, corner, rhs);
           if (atomics) {
             const Index node = cell_nodes(c, p);
-            const double m[6] = {impedance[p].xx, impedance[p].yy, impedance[p].zz,
-                                 impedance[p].xy, impedance[p].yz, impedance[p].xz};
+            const double m[6] = {impedance.xx, impedance.yy, impedance.zz,
+                                 impedance.xy, impedance.yz, impedance.xz};
             for (int i = 0; i < 6; ++i) Kokkos::atomic_add(&s.M_n(node, i), m[i]);
             Kokkos::atomic_add(&s.B_n(node, 0), rhs.x);
             Kokkos::atomic_add(&s.B_n(node, 1), rhs.y);
