@@ -90,7 +90,8 @@ TEST(Geometry, FusedCellGeometryMatchesTheReferenceFormulas) {
     EXPECT_NEAR(geo.shape.volume, shape.volume, 1e-14);
     EXPECT_LT(norm(geo.shape.centroid - shape.centroid), 1e-13);
     EXPECT_NEAR(geo.shape.max_face_area, shape.max_face_area, 1e-14);
-    for (int p = 0; p < 8; ++p) EXPECT_LT(norm(geo.corner[p] - corner[p]), 1e-15);
+    // the fused sweep works relative to node 0, the reference in absolute coordinates
+    for (int p = 0; p < 8; ++p) EXPECT_LT(norm(geo.corner[p] - corner[p]), 1e-14);
   }
 }
 
