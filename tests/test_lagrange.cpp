@@ -144,7 +144,7 @@ TEST(Lagrange, SedovShockRadiusAndOctantSymmetry) {
     EXPECT_TRUE(check.pass()) << check.name << " = " << check.value << " vs " << check.reference
                               << " +- " << check.tolerance;
   }
-  EXPECT_NEAR(checkValue(result, "shock_radius"), 1.0, 0.06);
+  EXPECT_NEAR(checkValue(result, "shock_radius"), 1.0, 0.03);
   EXPECT_LT(checkValue(result, "octant_symmetry"), 1e-10);
 }
 

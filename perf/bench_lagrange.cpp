@@ -1,0 +1,334 @@
+// Google Benchmark drivers of the Lagrangian step (STYLE §12): each kernel of
+// DESIGN §3 and the whole step on the `sedov` blast at N^3 cells, advanced a
+// few dozen steps first so the shock exists (limiters and wall mirrors take
+// their nontrivial branches). Every iteration is timed with a Kokkos::Timer
+// closed by Kokkos::fence() (UseManualTime); rates are per cell.
+//
+//   bench_lagrange [--n=N] [--kokkos-threads=T] [--benchmark_...]
+//   LAGREMAP_BENCH_N=N (default 60), LAGREMAP_BENCH_WARMUP=steps (default 40)
+//
+// Nothing is allocated inside a timed region: the state and its warm snapshot
+// are allocated once in main(), and each benchmark starts from that snapshot.
+#include <benchmark/benchmark.h>
+
+#include <Kokkos_Core.hpp>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "kernels/geometry.hpp"
+#include "kernels/nodal_solver.hpp"
+#include "src/lagrange_step.hpp"
+#include "src/problem.hpp"
+#include "src/run.hpp"
+
+namespace {
+
+using namespace lagremap;
+
+// Whole steps run from the warm snapshot before it is put back (untimed), so
+// the timed steps never drift far from the developed blast.
+constexpr long kStepsBetweenRestores = 50;
+// The fixed dt of the timed steps, as a fraction of the stable dt after warm-up.
+constexpr double kBenchDtFraction = 0.2;
+
+// BENCH-LOCAL COPY of the part of run.cpp's anonymous-namespace readNumerics()
+// the step uses (no validation); to go once run.hpp exposes it.
+Numerics readNumerics(const Config& config) {
+  Numerics numerics;
+  numerics.order = int(config.integer("numerics.order"));
+  numerics.step.cfl = config.real("numerics.cfl");
+  numerics.step.c_vol = config.real("numerics.c_vol");
+  numerics.dt_growth = config.real("numerics.dt_growth");
+  numerics.dt_initial_factor = config.real("numerics.dt_initial_factor");
+  numerics.gather = Gather::Crs;
+  return numerics;
+}
+
+// The developed blast and everything the benchmarks share.
+class Bench {
+ public:
+  Bench(int n, long warmup_steps) {
+    const Problem& problem = findProblem("sedov");
+    Config config = declareConfig(problem);
+    config.set("mesh.nx", std::to_string(n));
+    config.set("mesh.ny", std::to_string(n));
+    config.set("mesh.nz", std::to_string(n));
+    setup_ = problem.setup(config);
+    numerics_ = readNumerics(config);
+    Mesh& mesh = setup_.mesh;
+    // Atomics node sums allocated too: the Gather::Atomics variants need them.
+    state_ = allocateState(mesh, true);
+    initializeState(setup_, state_);
+    x_n_warm_ = Vec3View("bench::x_n_warm", mesh.n_nodes);
+    v_c_warm_ = Vec3View("bench::v_c_warm", mesh.n_cells);
+    E_c_warm_ = RealView("bench::E_c_warm", mesh.n_cells);
+    dvdt_c_warm_ = RealView("bench::dvdt_c_warm", mesh.n_cells);
+
+    // The time loop of run.cpp (initial dt factor, growth limit), no outputs.
+    const Kokkos::Timer wall;
+    LagrangeStep lagrange(mesh, state_, numerics_, timers_);
+    StepLimit limit = lagrange.computeGeometry();
+    if (limit.val < 0.0) throw std::runtime_error(describeInvalidCell(limit, 0, "set-up"));
+    double dt_prev = 0.0;
+    for (long step = 0; step < warmup_steps; ++step) {
+      double dt = limit.val;
+      if (step == 0) {
+        dt *= numerics_.dt_initial_factor;
+      } else if (numerics_.dt_growth * dt_prev < dt) {
+        dt = numerics_.dt_growth * dt_prev;
+      }
+      lagrange.advance(dt, step + 1);
+      limit = lagrange.computeGeometry();
+      if (limit.val < 0.0) {
+        throw std::runtime_error(describeInvalidCell(limit, step + 1, "warm-up"));
+      }
+      time_ += dt;
+      dt_prev = dt;
+    }
+    warmup_seconds_ = wall.seconds();
+    dt_stable_ = limit.val;
+    Kokkos::deep_copy(x_n_warm_, mesh.x_n);
+    Kokkos::deep_copy(v_c_warm_, state_.v_c);
+    Kokkos::deep_copy(E_c_warm_, state_.E_c);
+    Kokkos::deep_copy(dvdt_c_warm_, state_.dvdt_c);
+    shocked_cells_ = countShockedCells(config.real("ambient.rho"));
+  }
+
+  // Puts back the warm state: positions, velocities, energies, the derived
+  // cell fields, and the start-of-step copies the node and cell kernels read.
+  void restore() {
+    Kokkos::deep_copy(setup_.mesh.x_n, x_n_warm_);
+    Kokkos::deep_copy(state_.v_c, v_c_warm_);
+    Kokkos::deep_copy(state_.E_c, E_c_warm_);
+    Kokkos::deep_copy(state_.dvdt_c, dvdt_c_warm_);
+    lagremap::computeGeometry(setup_.mesh, state_, numerics_.step);
+    Kokkos::deep_copy(state_.x_n0, setup_.mesh.x_n);
+    Kokkos::deep_copy(state_.v_c0, state_.v_c);
+    Kokkos::deep_copy(state_.E_c0, state_.E_c);
+    Kokkos::fence();
+  }
+
+  Mesh& mesh() { return setup_.mesh; }
+  State& state() { return state_; }
+  PhaseTimers& timers() { return timers_; }
+  const Numerics& numerics() const { return numerics_; }
+  Index cells() const { return setup_.mesh.n_cells; }
+  Index nodes() const { return setup_.mesh.n_nodes; }
+  double dtStable() const { return dt_stable_; }
+  double dtBench() const { return kBenchDtFraction * dt_stable_; }
+  double time() const { return time_; }
+  double warmupSeconds() const { return warmup_seconds_; }
+  long shockedCells() const { return shocked_cells_; }
+
+ private:
+  // Cells whose density left the ambient value by more than 1%: the blast.
+  long countShockedCells(double rho_ambient) const {
+    const auto rho = state_.rho_c;
+    long count = 0;
+    Kokkos::parallel_reduce(
+        "bench::shocked_cells", Kokkos::RangePolicy<ExecSpace>(0, setup_.mesh.n_cells),
+        KOKKOS_LAMBDA(const Index c, long& sum) {
+          sum += math::fabs(rho(c) - rho_ambient) > 0.01 * rho_ambient ? 1 : 0;
+        },
+        count);
+    return count;
+  }
+
+  ProblemSetup setup_;
+  State state_;
+  PhaseTimers timers_;
+  Numerics numerics_;
+  Vec3View x_n_warm_, v_c_warm_;
+  RealView E_c_warm_, dvdt_c_warm_;
+  double dt_stable_ = 0.0, time_ = 0.0, warmup_seconds_ = 0.0;
+  long shocked_cells_ = 0;
+};
+
+std::unique_ptr<Bench> g_bench;
+
+// Per-cell rate of one kernel (kIsIterationInvariantRate: cells x iterations / manual time).
+void setCellRate(benchmark::State& state, const char* name) {
+  state.counters[name] =
+      benchmark::Counter(double(g_bench->cells()), benchmark::Counter::kIsIterationInvariantRate);
+}
+
+// Runs `body` once per iteration, timed by a Kokkos::Timer closed by a fence.
+template <class Body>
+void timedLoop(benchmark::State& state, Body&& body) {
+  for (auto _ : state) {
+    Kokkos::Timer timer;
+    body();
+    Kokkos::fence();
+    state.SetIterationTime(timer.seconds());
+  }
+}
+
+void BM_Geometry(benchmark::State& state) {
+  Bench& b = *g_bench;
+  b.restore();
+  timedLoop(state, [&] {
+    const StepLimit limit = lagremap::computeGeometry(b.mesh(), b.state(), b.numerics().step);
+    benchmark::DoNotOptimize(limit.val);
+  });
+  setCellRate(state, "cells_per_second");
+}
+
+void BM_CornerTerms(benchmark::State& state, int order, Gather gather) {
+  Bench& b = *g_bench;
+  b.restore();
+  const CornerControls controls{order, gather};
+  timedLoop(state, [&] { computeCornerTerms(b.mesh(), b.state(), controls); });
+  setCellRate(state, "cells_per_second");
+}
+
+// Corner terms + nodal solve, the pair whose split differs between the gathers
+// (Atomics: the node sums are scattered by the corner kernel).
+void BM_NodalSolve(benchmark::State& state, Gather gather) {
+  Bench& b = *g_bench;
+  b.restore();
+  const CornerControls controls{2, gather};
+  const double dt_stage = 0.5 * b.dtBench();
+  timedLoop(state, [&] {
+    computeCornerTerms(b.mesh(), b.state(), controls);
+    nodalSolve(b.mesh(), b.state(), controls, dt_stage);
+  });
+  setCellRate(state, "cells_per_second");
+}
+
+// The node kernel alone (node sums gathered via CRS, or read from M_n/B_n).
+void BM_NodalSolveOnly(benchmark::State& state, Gather gather) {
+  Bench& b = *g_bench;
+  b.restore();
+  const CornerControls controls{2, gather};
+  const double dt_stage = 0.5 * b.dtBench();
+  computeCornerTerms(b.mesh(), b.state(), controls);
+  timedLoop(state, [&] { nodalSolve(b.mesh(), b.state(), controls, dt_stage); });
+  setCellRate(state, "cells_per_second");
+}
+
+void BM_CellUpdate(benchmark::State& state) {
+  Bench& b = *g_bench;
+  b.restore();
+  const CornerControls controls{2, Gather::Crs};
+  const double dt_stage = 0.5 * b.dtBench();
+  computeCornerTerms(b.mesh(), b.state(), controls);
+  nodalSolve(b.mesh(), b.state(), controls, dt_stage);
+  timedLoop(state, [&] { updateCells(b.mesh(), b.state(), dt_stage); });
+  setCellRate(state, "cells_per_second");
+}
+
+// One whole step as the driver takes it: geometry (dt candidates) + advance(dt).
+void BM_FullStep(benchmark::State& state, int order) {
+  Bench& b = *g_bench;
+  b.restore();
+  Numerics numerics = b.numerics();
+  numerics.order = order;
+  LagrangeStep lagrange(b.mesh(), b.state(), numerics, b.timers());
+  const double dt = b.dtBench();
+  long step = 0;
+  for (auto _ : state) {
+    if (step > 0 && step % kStepsBetweenRestores == 0) b.restore();  // untimed
+    ++step;
+    Kokkos::Timer timer;
+    const StepLimit limit = lagrange.computeGeometry();
+    try {
+      lagrange.advance(dt, step);
+    } catch (const RunFailure& failure) {
+      state.SkipWithError(failure.what());
+      break;
+    }
+    Kokkos::fence();
+    state.SetIterationTime(timer.seconds());
+    if (limit.val < dt) {
+      state.SkipWithError("the fixed benchmark dt exceeds the stable dt");
+      break;
+    }
+  }
+  setCellRate(state, "cell_steps_per_second");
+}
+
+// Removes `--n=N` from argv (before benchmark::Initialize sees it); 0 if absent.
+int takeSizeFlag(int& argc, char* argv[]) {
+  int n = 0;
+  int kept = 1;
+  for (int i = 1; i < argc; ++i) {
+    if (std::strncmp(argv[i], "--n=", 4) == 0) {
+      n = std::atoi(argv[i] + 4);
+    } else {
+      argv[kept++] = argv[i];
+    }
+  }
+  argc = kept;
+  argv[argc] = nullptr;
+  return n;
+}
+
+void registerBenchmarks() {
+  auto manual = [](benchmark::internal::Benchmark* bench) {
+    bench->UseManualTime()->Unit(benchmark::kMillisecond);
+  };
+  manual(benchmark::RegisterBenchmark("BM_Geometry", BM_Geometry));
+  manual(benchmark::RegisterBenchmark("BM_CornerTerms/order2", BM_CornerTerms, 2, Gather::Crs));
+  manual(benchmark::RegisterBenchmark("BM_CornerTerms/order2_atomics", BM_CornerTerms, 2,
+                                      Gather::Atomics));
+  manual(benchmark::RegisterBenchmark("BM_NodalSolve/crs", BM_NodalSolve, Gather::Crs));
+  manual(benchmark::RegisterBenchmark("BM_NodalSolve/atomics", BM_NodalSolve, Gather::Atomics));
+  manual(benchmark::RegisterBenchmark("BM_NodalSolveOnly/crs", BM_NodalSolveOnly, Gather::Crs));
+  manual(benchmark::RegisterBenchmark("BM_NodalSolveOnly/atomics", BM_NodalSolveOnly,
+                                      Gather::Atomics));
+  manual(benchmark::RegisterBenchmark("BM_CellUpdate", BM_CellUpdate));
+  manual(benchmark::RegisterBenchmark("BM_FullStep/order1", BM_FullStep, 1));
+  manual(benchmark::RegisterBenchmark("BM_FullStep/order2", BM_FullStep, 2));
+}
+
+}  // namespace
+
+int main(int argc, char* argv[]) {
+  Kokkos::ScopeGuard kokkos(argc, argv);
+  int n = 60;
+  if (const char* env = std::getenv("LAGREMAP_BENCH_N")) n = std::atoi(env);
+  if (const int flag = takeSizeFlag(argc, argv)) n = flag;
+  long warmup_steps = 40;
+  if (const char* env = std::getenv("LAGREMAP_BENCH_WARMUP")) warmup_steps = std::atol(env);
+  if (n < 2 || warmup_steps < 0) {
+    std::fprintf(stderr, "bench_lagrange: N must be >= 2 and the warm-up >= 0 steps\n");
+    return 2;
+  }
+
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
+
+  try {
+    g_bench = std::make_unique<Bench>(n, warmup_steps);
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "bench_lagrange: set-up failed: %s\n", error.what());
+    return 1;
+  }
+  const Bench& b = *g_bench;
+  std::fprintf(stderr,
+               "bench_lagrange: sedov %d^3 (%d cells, %d nodes), %s x %d, warm-up %ld steps "
+               "(t = %.3g, %.1f s), %ld shocked cells, bench dt = %.3g\n",
+               n, b.cells(), b.nodes(), ExecSpace::name(), int(ExecSpace().concurrency()),
+               warmup_steps, b.time(), b.warmupSeconds(), b.shockedCells(), b.dtBench());
+  benchmark::AddCustomContext("problem", "sedov");
+  benchmark::AddCustomContext("n", std::to_string(n));
+  benchmark::AddCustomContext("cells", std::to_string(b.cells()));
+  benchmark::AddCustomContext("nodes", std::to_string(b.nodes()));
+  benchmark::AddCustomContext("execution_space", ExecSpace::name());
+  benchmark::AddCustomContext("kokkos_threads", std::to_string(ExecSpace().concurrency()));
+  benchmark::AddCustomContext("warmup_steps", std::to_string(warmup_steps));
+  benchmark::AddCustomContext("warmup_time", std::to_string(b.time()));
+  benchmark::AddCustomContext("shocked_cells", std::to_string(b.shockedCells()));
+  benchmark::AddCustomContext("bench_dt", std::to_string(b.dtBench()));
+
+  registerBenchmarks();
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  g_bench.reset();  // the Views go before Kokkos::finalize
+  return 0;
+}

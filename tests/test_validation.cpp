@@ -1,0 +1,51 @@
+// Long physics runs (ctest label "long"): the default resolutions of the
+// problems, whose summary checks must all pass, and Sod's convergence over a
+// decade of resolution.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "test_support.hpp"
+
+namespace lagremap {
+namespace {
+
+TEST(Validation, DefaultProblemsPassTheirChecks) {
+  for (const char* problem : {"sod", "sedov"}) {
+    for (const char* order : {"1", "2"}) {
+      const RunResult result = runProblem(
+          testing::problemOptions(problem, {std::string("numerics.order=") + order}));
+      ASSERT_FALSE(result.failed) << result.failure;
+      for (const auto& check : result.checks) {
+        std::printf("%s order %s: %-20s %.6g (reference %.6g, tolerance %.3g)\n", problem, order,
+                    check.name.c_str(), check.value, check.reference, check.tolerance);
+        EXPECT_TRUE(check.pass()) << problem << " order " << order << ": " << check.name;
+      }
+      EXPECT_LT(result.drift_energy, 1e-12);
+      EXPECT_LT(result.drift_momentum, 1e-12);
+    }
+  }
+}
+
+TEST(Validation, SodConvergenceOverADecade) {
+  for (int order : {1, 2}) {
+    double previous = 0.0;
+    for (int nx : {100, 200, 400, 800, 1600}) {
+      const RunResult result = runProblem(testing::problemOptions(
+          "sod", {"mesh.nx=" + std::to_string(nx), "numerics.order=" + std::to_string(order)}));
+      ASSERT_FALSE(result.failed);
+      const double error = result.checks.front().value;
+      EXPECT_TRUE(result.checks.front().pass()) << "nx " << nx << " order " << order;
+      if (previous > 0.0) {
+        const double rate = std::log2(previous / error);
+        std::printf("sod order %d: nx %4d  L1(rho) %.4e  observed order %.2f\n", order, nx, error,
+                    rate);
+        EXPECT_GT(rate, order == 2 ? 0.85 : 0.5);
+      }
+      previous = error;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace lagremap
