@@ -124,13 +124,19 @@ std::vector<Check> finishSedov(const Config& config, const FinalFields& fields,
   }
   std::ofstream slice;
   if (!out_dir.empty()) slice.open(out_dir + "/slice_z.csv");
-  slice << "x,y,rho,p,speed\n" << std::setprecision(8);
+  // The cell layer at z = 0 with the corners of each cell's bottom face
+  // (VTK nodes 0-3), so the map shows the Lagrangian cells as they are.
+  slice << "x,y,rho,p,speed,x0,y0,x1,y1,x2,y2,x3,y3\n" << std::setprecision(8);
   for (Index c = 0; c < nx * ny; ++c) {
     slice << fields.x_c(c, 0) << ',' << fields.x_c(c, 1) << ',' << fields.rho(c) << ','
           << fields.p(c) << ','
-          << std::sqrt(fields.v(c, 0) * fields.v(c, 0) + fields.v(c, 1) * fields.v(c, 1)) << '\n';
+          << std::sqrt(fields.v(c, 0) * fields.v(c, 0) + fields.v(c, 1) * fields.v(c, 1));
+    for (int p = 0; p < 4; ++p) {
+      const Index node = fields.mesh.cell_nodes(c, p);
+      slice << ',' << fields.mesh.x_n(node, 0) << ',' << fields.mesh.x_n(node, 1);
+    }
+    slice << '\n';
   }
-
   std::vector<Check> checks;
   const double gamma = config.real("gas.gamma");
   if (std::abs(gamma - 1.4) < 1e-12) {
