@@ -27,7 +27,8 @@ KOKKOS_INLINE_FUNCTION ThermoState idealGas(double gamma, double rho, double e) 
 KOKKOS_INLINE_FUNCTION ThermoState evaluateEos(const MaterialParams& mat, double rho, double e) {
   switch (mat.eos) {
     case EosKind::IdealGas:
-    default: return idealGas(mat.gamma, rho, e);
+    default:
+      return idealGas(mat.gamma, rho, e);
   }
 }
 

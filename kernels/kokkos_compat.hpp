@@ -8,8 +8,8 @@
 namespace lagremap::math {
 
 #if KOKKOS_VERSION >= 30700
-using Kokkos::fabs;
 using Kokkos::cbrt;
+using Kokkos::fabs;
 using Kokkos::fmax;
 using Kokkos::fmin;
 using Kokkos::isfinite;
@@ -17,8 +17,8 @@ using Kokkos::log;
 using Kokkos::pow;
 using Kokkos::sqrt;
 #else
-using Kokkos::Experimental::fabs;
 using Kokkos::Experimental::cbrt;
+using Kokkos::Experimental::fabs;
 using Kokkos::Experimental::fmax;
 using Kokkos::Experimental::fmin;
 using Kokkos::Experimental::isfinite;

@@ -17,9 +17,15 @@ KOKKOS_INLINE_FUNCTION Vec3 operator+(const Vec3& a, const Vec3& b) {
 KOKKOS_INLINE_FUNCTION Vec3 operator-(const Vec3& a, const Vec3& b) {
   return {a.x - b.x, a.y - b.y, a.z - b.z};
 }
-KOKKOS_INLINE_FUNCTION Vec3 operator-(const Vec3& a) { return {-a.x, -a.y, -a.z}; }
-KOKKOS_INLINE_FUNCTION Vec3 operator*(double s, const Vec3& a) { return {s * a.x, s * a.y, s * a.z}; }
-KOKKOS_INLINE_FUNCTION Vec3 operator*(const Vec3& a, double s) { return s * a; }
+KOKKOS_INLINE_FUNCTION Vec3 operator-(const Vec3& a) {
+  return {-a.x, -a.y, -a.z};
+}
+KOKKOS_INLINE_FUNCTION Vec3 operator*(double s, const Vec3& a) {
+  return {s * a.x, s * a.y, s * a.z};
+}
+KOKKOS_INLINE_FUNCTION Vec3 operator*(const Vec3& a, double s) {
+  return s * a;
+}
 KOKKOS_INLINE_FUNCTION Vec3& operator+=(Vec3& a, const Vec3& b) {
   a.x += b.x;
   a.y += b.y;
@@ -38,7 +44,9 @@ KOKKOS_INLINE_FUNCTION double dot(const Vec3& a, const Vec3& b) {
 KOKKOS_INLINE_FUNCTION Vec3 cross(const Vec3& a, const Vec3& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-KOKKOS_INLINE_FUNCTION double norm(const Vec3& a) { return math::sqrt(dot(a, a)); }
+KOKKOS_INLINE_FUNCTION double norm(const Vec3& a) {
+  return math::sqrt(dot(a, a));
+}
 
 // Symmetric 3x3 tensor, Voigt-like order xx, yy, zz, xy, yz, xz.
 struct SymMat3 {
@@ -59,13 +67,17 @@ KOKKOS_INLINE_FUNCTION Vec3 operator*(const SymMat3& m, const Vec3& v) {
   return {m.xx * v.x + m.xy * v.y + m.xz * v.z, m.xy * v.x + m.yy * v.y + m.yz * v.z,
           m.xz * v.x + m.yz * v.y + m.zz * v.z};
 }
-KOKKOS_INLINE_FUNCTION SymMat3 identitySym(double s = 1.0) { return {s, s, s, 0.0, 0.0, 0.0}; }
+KOKKOS_INLINE_FUNCTION SymMat3 identitySym(double s = 1.0) {
+  return {s, s, s, 0.0, 0.0, 0.0};
+}
 // a (x) a / scale
 KOKKOS_INLINE_FUNCTION SymMat3 outerSelf(const Vec3& a, double scale) {
   return {scale * a.x * a.x, scale * a.y * a.y, scale * a.z * a.z,
           scale * a.x * a.y, scale * a.y * a.z, scale * a.x * a.z};
 }
-KOKKOS_INLINE_FUNCTION double trace(const SymMat3& m) { return m.xx + m.yy + m.zz; }
+KOKKOS_INLINE_FUNCTION double trace(const SymMat3& m) {
+  return m.xx + m.yy + m.zz;
+}
 KOKKOS_INLINE_FUNCTION double det(const SymMat3& m) {
   return m.xx * (m.yy * m.zz - m.yz * m.yz) - m.xy * (m.xy * m.zz - m.yz * m.xz) +
          m.xz * (m.xy * m.yz - m.yy * m.xz);
@@ -80,12 +92,9 @@ KOKKOS_INLINE_FUNCTION SymMat3 inverse(const SymMat3& m) {
   const double c_xy = m.xz * m.yz - m.xy * m.zz;
   const double c_xz = m.xy * m.yz - m.yy * m.xz;
   const double inv_det = 1.0 / (m.xx * c_xx + m.xy * c_xy + m.xz * c_xz);
-  return {inv_det * c_xx,
-          inv_det * (m.xx * m.zz - m.xz * m.xz),
-          inv_det * (m.xx * m.yy - m.xy * m.xy),
-          inv_det * c_xy,
-          inv_det * (m.xy * m.xz - m.xx * m.yz),
-          inv_det * c_xz};
+  return {
+      inv_det * c_xx, inv_det * (m.xx * m.zz - m.xz * m.xz), inv_det * (m.xx * m.yy - m.xy * m.xy),
+      inv_det * c_xy, inv_det * (m.xy * m.xz - m.xx * m.yz), inv_det * c_xz};
 }
 KOKKOS_INLINE_FUNCTION double ddot(const SymMat3& a, const SymMat3& b) {
   return a.xx * b.xx + a.yy * b.yy + a.zz * b.zz + 2.0 * (a.xy * b.xy + a.yz * b.yz + a.xz * b.xz);
@@ -96,7 +105,9 @@ struct Mat3 {
   double m[3][3];
 };
 
-KOKKOS_INLINE_FUNCTION Mat3 zeroMat() { return {{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}}; }
+KOKKOS_INLINE_FUNCTION Mat3 zeroMat() {
+  return {{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}};
+}
 // a (x) b accumulated with weight s: m_ij += s a_i b_j
 KOKKOS_INLINE_FUNCTION void addOuter(Mat3& m, double s, const Vec3& a, const Vec3& b) {
   const double as[3] = {s * a.x, s * a.y, s * a.z};
@@ -109,7 +120,9 @@ KOKKOS_INLINE_FUNCTION Vec3 operator*(const Mat3& a, const Vec3& v) {
           a.m[1][0] * v.x + a.m[1][1] * v.y + a.m[1][2] * v.z,
           a.m[2][0] * v.x + a.m[2][1] * v.y + a.m[2][2] * v.z};
 }
-KOKKOS_INLINE_FUNCTION double trace(const Mat3& a) { return a.m[0][0] + a.m[1][1] + a.m[2][2]; }
+KOKKOS_INLINE_FUNCTION double trace(const Mat3& a) {
+  return a.m[0][0] + a.m[1][1] + a.m[2][2];
+}
 KOKKOS_INLINE_FUNCTION SymMat3 symPart(const Mat3& a) {
   return {a.m[0][0],
           a.m[1][1],

@@ -21,7 +21,7 @@ namespace lagremap {
 enum class Gather { Crs, Atomics };
 
 struct CornerControls {
-  int order = 2;                 // 1: piecewise constant, 2: limited linear reconstruction
+  int order = 2;  // 1: piecewise constant, 2: limited linear reconstruction
   Gather gather = Gather::Crs;
 };
 
@@ -155,7 +155,8 @@ KOKKOS_INLINE_FUNCTION SymMat3 constrainedMatrix(const SymMat3& projector, const
   const double M[3][3] = {{m.xx, m.xy, m.xz}, {m.xy, m.yy, m.yz}, {m.xz, m.yz, m.zz}};
   double PM[3][3], A[3][3];
   for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) PM[i][j] = P[i][0] * M[0][j] + P[i][1] * M[1][j] + P[i][2] * M[2][j];
+    for (int j = 0; j < 3; ++j)
+      PM[i][j] = P[i][0] * M[0][j] + P[i][1] * M[1][j] + P[i][2] * M[2][j];
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
       A[i][j] = PM[i][0] * P[0][j] + PM[i][1] * P[1][j] + PM[i][2] * P[2][j] + (i == j) - P[i][j];

@@ -23,11 +23,11 @@ void declareSedov(Config& config) {
   config.addReal("gas.gamma", 1.4, "-", "ratio of specific heats");
   config.addReal("ambient.rho", 1.0, "kg/m^3", "density of the gas at rest");
   config.addReal("ambient.p", 1e-6, "Pa", "pressure of the gas at rest");
-  config.addReal("blast.energy", 0.851072, "J", "blast energy of the full sphere (octant gets 1/8)");
+  config.addReal("blast.energy", 0.851072, "J",
+                 "blast energy of the full sphere (octant gets 1/8)");
   config.addReal("geometry.size", 1.2, "m", "edge of the cubic octant domain");
   declareMeshKeys(config, 30, 30, 30);
-  declareBoundaryKeys(config,
-                      {"symmetry", "wall", "symmetry", "wall", "symmetry", "wall"});
+  declareBoundaryKeys(config, {"symmetry", "wall", "symmetry", "wall", "symmetry", "wall"});
   config.addReal("check.radius_tolerance", 0.03, "-", "relative tolerance on the shock radius");
 }
 
@@ -37,7 +37,8 @@ ProblemSetup setupSedov(const Config& config) {
   const double rho0 = config.real("ambient.rho"), p0 = config.real("ambient.p");
   const double energy = config.real("blast.energy");
   if (!(size > 0) || !(gamma > 1) || !(rho0 > 0) || !(p0 > 0) || !(energy > 0)) {
-    throw ConfigError("sedov: size, gamma - 1, ambient rho and p and blast energy must be positive");
+    throw ConfigError(
+        "sedov: size, gamma - 1, ambient rho and p and blast energy must be positive");
   }
   BlockSpec block;
   block.nx = int(config.integer("mesh.nx"));
@@ -78,12 +79,12 @@ std::vector<Check> finishSedov(const Config& config, const FinalFields& fields,
   const int n_bins = std::max(fields.nx, 10);
   std::vector<double> bin_mass(n_bins, 0.0), bin_volume(n_bins, 0.0);
   for (Index c = 0; c < n_cells; ++c) {
-    const double r = std::sqrt(fields.x_c(c, 0) * fields.x_c(c, 0) +
-                               fields.x_c(c, 1) * fields.x_c(c, 1) +
-                               fields.x_c(c, 2) * fields.x_c(c, 2));
-    const double speed = std::sqrt(fields.v(c, 0) * fields.v(c, 0) +
-                                   fields.v(c, 1) * fields.v(c, 1) +
-                                   fields.v(c, 2) * fields.v(c, 2));
+    const double r =
+        std::sqrt(fields.x_c(c, 0) * fields.x_c(c, 0) + fields.x_c(c, 1) * fields.x_c(c, 1) +
+                  fields.x_c(c, 2) * fields.x_c(c, 2));
+    const double speed =
+        std::sqrt(fields.v(c, 0) * fields.v(c, 0) + fields.v(c, 1) * fields.v(c, 1) +
+                  fields.v(c, 2) * fields.v(c, 2));
     radial << r << ',' << fields.rho(c) << ',' << fields.p(c) << ',' << speed << '\n';
     const int bin = int(r / size * n_bins);
     if (bin < n_bins) {
@@ -93,7 +94,9 @@ std::vector<Check> finishSedov(const Config& config, const FinalFields& fields,
   }
   int peak = 0;
   for (int b = 0; b < n_bins; ++b) {
-    if (bin_volume[b] > 0 && bin_mass[b] / bin_volume[b] > bin_mass[peak] / std::max(bin_volume[peak], 1e-300)) peak = b;
+    if (bin_volume[b] > 0 &&
+        bin_mass[b] / bin_volume[b] > bin_mass[peak] / std::max(bin_volume[peak], 1e-300))
+      peak = b;
   }
   // Sub-bin position of the peak: vertex of the parabola through the peak bin
   // and its two neighbours.
@@ -140,10 +143,9 @@ std::vector<Check> finishSedov(const Config& config, const FinalFields& fields,
   std::vector<Check> checks;
   const double gamma = config.real("gas.gamma");
   if (std::abs(gamma - 1.4) < 1e-12) {
-    const double reference =
-        std::pow(config.real("blast.energy") * fields.time * fields.time /
-                     (kSedovAlphaGamma14 * config.real("ambient.rho")),
-                 0.2);
+    const double reference = std::pow(config.real("blast.energy") * fields.time * fields.time /
+                                          (kSedovAlphaGamma14 * config.real("ambient.rho")),
+                                      0.2);
     checks.push_back({"shock_radius", measured_radius, reference,
                       config.real("check.radius_tolerance") * reference,
                       "peak of the shell-averaged density vs the self-similar radius"});

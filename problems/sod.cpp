@@ -34,7 +34,8 @@ ProblemSetup setupSod(const Config& config) {
   const double x_min = config.real("geometry.x_min"), x_max = config.real("geometry.x_max");
   const double width = config.real("geometry.width");
   const double x_interface = config.real("geometry.x_interface");
-  if (!(x_max > x_min) || !(width > 0.0)) throw ConfigError("sod: need x_max > x_min and width > 0");
+  if (!(x_max > x_min) || !(width > 0.0))
+    throw ConfigError("sod: need x_max > x_min and width > 0");
   if (!(x_interface > x_min && x_interface < x_max)) {
     throw ConfigError("sod: geometry.x_interface must lie inside (x_min, x_max)");
   }
@@ -119,10 +120,10 @@ std::vector<Check> finishSod(const Config& config, const FinalFields& fields,
   std::vector<Check> checks;
   checks.push_back({"l1_density", l1_rho, 0.0, bound,
                     "L1 norm of rho - rho_exact over the tube (exact Riemann solution)"});
-  checks.push_back({"l1_velocity", l1_u, 0.0, 10.0 * bound,
-                    "L1 norm of u - u_exact (reported; loose bound)"});
-  checks.push_back({"l1_pressure", l1_p, 0.0, 10.0 * bound,
-                    "L1 norm of p - p_exact (reported; loose bound)"});
+  checks.push_back(
+      {"l1_velocity", l1_u, 0.0, 10.0 * bound, "L1 norm of u - u_exact (reported; loose bound)"});
+  checks.push_back(
+      {"l1_pressure", l1_p, 0.0, 10.0 * bound, "L1 norm of p - p_exact (reported; loose bound)"});
   checks.push_back({"transverse_velocity", transverse, 0.0, 1e-12 * std::max(speed, 1.0),
                     "max |v_y|, |v_z|: a 1D problem on a 3D bar stays 1D to round-off"});
   return checks;
@@ -131,7 +132,7 @@ std::vector<Check> finishSod(const Config& config, const FinalFields& fields,
 }  // namespace
 
 extern const Problem kSodProblem = {
-    "sod", "Sod shock tube along x (1D on a 3D bar), exact Riemann solution", declareSod,
-    setupSod, finishSod};
+    "sod", "Sod shock tube along x (1D on a 3D bar), exact Riemann solution", declareSod, setupSod,
+    finishSod};
 
 }  // namespace lagremap

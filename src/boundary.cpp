@@ -20,10 +20,14 @@ BoundaryKind parseBoundaryKind(const std::string& key, const std::string& text) 
 
 const char* boundaryKindName(BoundaryKind kind) {
   switch (kind) {
-    case BoundaryKind::Free: return "free";
-    case BoundaryKind::Wall: return "wall";
-    case BoundaryKind::Fixed: return "fixed";
-    case BoundaryKind::Traction: return "traction";
+    case BoundaryKind::Free:
+      return "free";
+    case BoundaryKind::Wall:
+      return "wall";
+    case BoundaryKind::Fixed:
+      return "fixed";
+    case BoundaryKind::Traction:
+      return "traction";
   }
   return "?";
 }

@@ -51,8 +51,7 @@ int runCommandLine(int argc, char* argv[]) {
   app.add_option("--problem", problem_name, "problem to run (see --list)");
   app.add_option("--mode", mode, "lagrange (pure Lagrangian) or remap (Lagrange-Remap)")
       ->check(CLI::IsMember({"lagrange", "remap"}));
-  app.add_option("--scale", scale, "multiply every cell count by S")
-      ->check(CLI::PositiveNumber);
+  app.add_option("--scale", scale, "multiply every cell count by S")->check(CLI::PositiveNumber);
   app.add_option("--t-end", t_end, "final time [s]")->check(CLI::PositiveNumber);
   app.add_option("--cfl", cfl, "CFL number")->check(CLI::Range(1e-6, 1.0));
   app.add_option("--order", order, "1 or 2")->check(CLI::IsMember({1, 2}));
@@ -106,8 +105,8 @@ int runCommandLine(int argc, char* argv[]) {
     if (!input.empty()) {
       options.config.loadDeck(input, &deck_problem, &deck_mode);
       if (!deck_problem.empty() && deck_problem != problem_name) {
-        return badInput("input deck '" + input + "' is for problem '" + deck_problem +
-                        "', not '" + problem_name + "'");
+        return badInput("input deck '" + input + "' is for problem '" + deck_problem + "', not '" +
+                        problem_name + "'");
       }
       if (!deck_mode.empty() && app.count("--mode") == 0) mode = deck_mode;
     }

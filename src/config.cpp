@@ -1,12 +1,12 @@
 #include "config.hpp"
 
+#include <toml++/toml.h>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <functional>
 #include <iomanip>
 #include <sstream>
-#include <toml++/toml.h>
 
 namespace lagremap {
 namespace {
@@ -47,10 +47,14 @@ bool parseBoolean(const std::string& text, bool* value) {
 
 std::string typeName(const Param& param) {
   switch (param.type) {
-    case ParamType::Real: return "a real number";
-    case ParamType::Integer: return "an integer";
-    case ParamType::Boolean: return "true or false";
-    case ParamType::Text: return "text";
+    case ParamType::Real:
+      return "a real number";
+    case ParamType::Integer:
+      return "an integer";
+    case ParamType::Boolean:
+      return "true or false";
+    case ParamType::Text:
+      return "text";
     case ParamType::Choice: {
       std::string names;
       for (const auto& c : param.choices) names += (names.empty() ? "" : "|") + c;
@@ -125,7 +129,8 @@ void Config::set(const std::string& key, const std::string& value) {
       ok = false;
       for (const auto& choice : param.choices) ok = ok || choice == value;
       break;
-    case ParamType::Text: break;
+    case ParamType::Text:
+      break;
   }
   if (!ok) {
     throw ConfigError("bad value '" + value + "' for key '" + key + "': expected " +
@@ -165,8 +170,8 @@ void Config::loadDeck(const std::string& path, std::string* problem, std::string
   std::function<void(const toml::table&, const std::string&)> walk =
       [&](const toml::table& table, const std::string& prefix) {
         for (const auto& [name, node] : table) {
-          const std::string key = prefix.empty() ? std::string(name.str())
-                                                 : prefix + "." + std::string(name.str());
+          const std::string key =
+              prefix.empty() ? std::string(name.str()) : prefix + "." + std::string(name.str());
           if (const auto* sub = node.as_table()) {
             walk(*sub, key);
             continue;
@@ -236,16 +241,19 @@ bool Config::boolean(const std::string& key) const {
   return value;
 }
 
-const std::string& Config::text(const std::string& key) const { return get(key).value; }
+const std::string& Config::text(const std::string& key) const {
+  return get(key).value;
+}
 
 std::string Config::printable() const {
   std::ostringstream out;
   std::size_t width = 0;
-  for (const auto& entry : params_) width = std::max(width, entry.first.size() + 1 + entry.second.value.size());
+  for (const auto& entry : params_)
+    width = std::max(width, entry.first.size() + 1 + entry.second.value.size());
   for (const auto& [key, param] : params_) {
     const std::string assignment = key + "=" + param.value;
-    out << std::left << std::setw(static_cast<int>(width) + 2) << assignment << "# ["
-        << param.unit << "] " << param.help;
+    out << std::left << std::setw(static_cast<int>(width) + 2) << assignment << "# [" << param.unit
+        << "] " << param.help;
     if (param.type == ParamType::Choice) out << " (" << typeName(param) << ")";
     out << '\n';
   }

@@ -45,8 +45,6 @@ BoundaryPower computeBoundaryPower(const Mesh& mesh, const State& state);
 namespace Kokkos {
 template <int N>
 struct reduction_identity<lagremap::SumArray<N>> {
-  KOKKOS_FORCEINLINE_FUNCTION static lagremap::SumArray<N> sum() {
-    return lagremap::SumArray<N>();
-  }
+  KOKKOS_FORCEINLINE_FUNCTION static lagremap::SumArray<N> sum() { return lagremap::SumArray<N>(); }
 };
 }  // namespace Kokkos

@@ -50,14 +50,21 @@ class JsonWriter {
     quoted << '"';
     for (const char ch : text) {
       switch (ch) {
-        case '"': quoted << "\\\""; break;
-        case '\\': quoted << "\\\\"; break;
-        case '\n': quoted << "\\n"; break;
-        case '\t': quoted << "\\t"; break;
+        case '"':
+          quoted << "\\\"";
+          break;
+        case '\\':
+          quoted << "\\\\";
+          break;
+        case '\n':
+          quoted << "\\n";
+          break;
+        case '\t':
+          quoted << "\\t";
+          break;
         default:
           if (static_cast<unsigned char>(ch) < 0x20) {
-            quoted << "\\u" << std::hex << std::setw(4) << std::setfill('0') << int(ch)
-                   << std::dec;
+            quoted << "\\u" << std::hex << std::setw(4) << std::setfill('0') << int(ch) << std::dec;
           } else {
             quoted << ch;
           }

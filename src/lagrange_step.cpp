@@ -8,17 +8,23 @@ std::string describeInvalidCell(const StepLimit& limit, long step, const char* w
   const int cell = limit.loc / kLimitCodes;
   const char* what = "invalid state";
   switch (limit.loc % kLimitCodes) {
-    case kBadVolume: what = "non-positive volume (tangled cell)"; break;
-    case kBadState: what = "NaN or infinite energy or velocity"; break;
-    case kBadSoundSpeed: what = "non-positive squared sound speed (negative energy/pressure)"; break;
-    default: break;
+    case kBadVolume:
+      what = "non-positive volume (tangled cell)";
+      break;
+    case kBadState:
+      what = "NaN or infinite energy or velocity";
+      break;
+    case kBadSoundSpeed:
+      what = "non-positive squared sound speed (negative energy/pressure)";
+      break;
+    default:
+      break;
   }
   return "step " + std::to_string(step) + " (" + when + "), cell " + std::to_string(cell) + ": " +
          what;
 }
 
-LagrangeStep::LagrangeStep(Mesh& mesh, State& state, const Numerics& numerics,
-                           PhaseTimers& timers)
+LagrangeStep::LagrangeStep(Mesh& mesh, State& state, const Numerics& numerics, PhaseTimers& timers)
     : mesh_(mesh), state_(state), numerics_(numerics), timers_(timers) {}
 
 StepLimit LagrangeStep::computeGeometry() {

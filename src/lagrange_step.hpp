@@ -17,9 +17,9 @@ namespace lagremap {
 struct Numerics {
   int order = 2;
   TimeStepControls step;
-  double dt_growth = 1.05;        // dt <= dt_growth * dt_prev
-  double dt_initial_factor = 0.1; // first dt = factor * stable dt
-  double dt_min = 0.0;            // below this the run stops (dt collapse)
+  double dt_growth = 1.05;         // dt <= dt_growth * dt_prev
+  double dt_initial_factor = 0.1;  // first dt = factor * stable dt
+  double dt_min = 0.0;             // below this the run stops (dt collapse)
   long max_steps = 10000000;
   Gather gather = Gather::Crs;
 };

@@ -11,8 +11,8 @@ namespace {
 
 template <class HostView, class DeviceViewT>
 void upload(const HostView& host, DeviceViewT& device) {
-  device = DeviceViewT(Kokkos::view_alloc(Kokkos::WithoutInitializing, host.label()),
-                       host.extent(0));
+  device =
+      DeviceViewT(Kokkos::view_alloc(Kokkos::WithoutInitializing, host.label()), host.extent(0));
   Kokkos::deep_copy(device, host);
 }
 
@@ -55,8 +55,7 @@ Mesh buildBlockMesh(const BlockSpec& spec, const SideBoundaries& boundaries) {
     for (int j = 0; j <= spec.ny; ++j)
       for (int i = 0; i <= spec.nx; ++i) {
         Vec3 x{spec.lo.x + i * dx, spec.lo.y + j * dy, spec.lo.z + k * dz};
-        const bool interior =
-            i > 0 && i < spec.nx && j > 0 && j < spec.ny && k > 0 && k < spec.nz;
+        const bool interior = i > 0 && i < spec.nx && j > 0 && j < spec.ny && k > 0 && k < spec.nz;
         if (spec.perturbation > 0.0 && interior) {
           x += Vec3{spec.perturbation * dx * unit(rng), spec.perturbation * dy * unit(rng),
                     spec.perturbation * dz * unit(rng)};
@@ -74,10 +73,14 @@ Mesh buildBlockMesh(const BlockSpec& spec, const SideBoundaries& boundaries) {
     for (int j = 0; j < spec.ny; ++j)
       for (int i = 0; i < spec.nx; ++i) {
         const int c = cell_id(i, j, k);
-        const int corner_nodes[8] = {node_id(i, j, k),         node_id(i + 1, j, k),
-                                     node_id(i + 1, j + 1, k), node_id(i, j + 1, k),
-                                     node_id(i, j, k + 1),     node_id(i + 1, j, k + 1),
-                                     node_id(i + 1, j + 1, k + 1), node_id(i, j + 1, k + 1)};
+        const int corner_nodes[8] = {node_id(i, j, k),
+                                     node_id(i + 1, j, k),
+                                     node_id(i + 1, j + 1, k),
+                                     node_id(i, j + 1, k),
+                                     node_id(i, j, k + 1),
+                                     node_id(i + 1, j, k + 1),
+                                     node_id(i + 1, j + 1, k + 1),
+                                     node_id(i, j + 1, k + 1)};
         for (int p = 0; p < 8; ++p) nodes_host(c, p) = corner_nodes[p];
         const bool at_lo[3] = {i == 0, j == 0, k == 0};
         const bool at_hi[3] = {i == spec.nx - 1, j == spec.ny - 1, k == spec.nz - 1};
@@ -129,8 +132,7 @@ Mesh buildBlockMesh(const BlockSpec& spec, const SideBoundaries& boundaries) {
     }
   }
   Kokkos::View<int*, HostSpace> constrained_host("lagremap::mesh::node_constrained", mesh.n_nodes);
-  Kokkos::View<Real* [6], HostSpace> projector_host("lagremap::mesh::node_projector",
-                                                    mesh.n_nodes);
+  Kokkos::View<Real* [6], HostSpace> projector_host("lagremap::mesh::node_projector", mesh.n_nodes);
   std::vector<Index> traction_offsets(mesh.n_nodes + 1, 0);
   std::vector<Index> traction_list;
   for (Index n = 0; n < mesh.n_nodes; ++n) {

@@ -200,7 +200,8 @@ RunResult runProblem(const RunOptions& options) {
   if (options.write_files) {
     std::error_code error;
     std::filesystem::create_directories(dir, error);
-    if (error) throw ConfigError("cannot create output directory '" + dir + "': " + error.message());
+    if (error)
+      throw ConfigError("cannot create output directory '" + dir + "': " + error.message());
     history.open(dir + "/history.csv");
     if (!history) throw ConfigError("cannot write '" + dir + "/history.csv'");
     history << "step,t,dt,dt_reason,mass,momentum_x,momentum_y,momentum_z,kinetic_energy,"
@@ -261,13 +262,13 @@ RunResult runProblem(const RunOptions& options) {
       reason = "end";
     }
     if (step >= numerics.max_steps) {
-      result.failure = "step " + std::to_string(step) + ": numerics.max_steps reached at t = " +
-                       std::to_string(t);
+      result.failure = "step " + std::to_string(step) +
+                       ": numerics.max_steps reached at t = " + std::to_string(t);
     } else if (dt < numerics.dt_min && reason != std::string("end") &&
                reason != std::string("output")) {
-      result.failure = "step " + std::to_string(step + 1) + ": time step collapse, dt = " +
-                       std::to_string(dt) + " (" + reason + " limited, cell " +
-                       std::to_string(limit.loc / kLimitCodes) + ")";
+      result.failure = "step " + std::to_string(step + 1) +
+                       ": time step collapse, dt = " + std::to_string(dt) + " (" + reason +
+                       " limited, cell " + std::to_string(limit.loc / kLimitCodes) + ")";
     }
     if (!result.failure.empty()) break;
 
@@ -328,7 +329,8 @@ RunResult runProblem(const RunOptions& options) {
         std::max({result.max_transverse_velocity, std::abs(result.fields.v(c, 1)),
                   std::abs(result.fields.v(c, 2))});
   }
-  if (!result.failed) result.checks = problem.finish(config, result.fields, options.write_files ? dir : "");
+  if (!result.failed)
+    result.checks = problem.finish(config, result.fields, options.write_files ? dir : "");
   if (!options.write_files) return result;
 
   {

@@ -5,8 +5,12 @@ namespace lagremap {
 State allocateState(const Mesh& mesh, bool with_atomics_gather) {
   const Index nc = mesh.n_cells, nn = mesh.n_nodes, ncorner = 8 * mesh.n_cells;
   State s;
-  auto cells = [&](const char* name) { return RealView(std::string("lagremap::state::") + name, nc); };
-  auto cells3 = [&](const char* name) { return Vec3View(std::string("lagremap::state::") + name, nc); };
+  auto cells = [&](const char* name) {
+    return RealView(std::string("lagremap::state::") + name, nc);
+  };
+  auto cells3 = [&](const char* name) {
+    return Vec3View(std::string("lagremap::state::") + name, nc);
+  };
   s.m_c = cells("m_c");
   s.v_c = cells3("v_c");
   s.E_c = cells("E_c");

@@ -33,9 +33,9 @@ struct State {
   Vec3View B_cp;  // M_cp V_c(p) - sigma_c(p) A_cp
 
   // Nodes.
-  Vec3View v_n;      // nodal velocity from the nodal solver
-  Vec3View x_n_next; // node positions at the end of the stage (swapped with Mesh::x_n)
-  Vec3View f_ext_n;  // external force on the node (wall reaction + traction): sum_c F_cp
+  Vec3View v_n;       // nodal velocity from the nodal solver
+  Vec3View x_n_next;  // node positions at the end of the stage (swapped with Mesh::x_n)
+  Vec3View f_ext_n;   // external force on the node (wall reaction + traction): sum_c F_cp
   // Node sums for the atomics gather variant (allocated only when used).
   Sym6View M_n;
   Vec3View B_n;

@@ -108,13 +108,14 @@ TEST(CommandLine, SodRunWritesSummaryWithPassingChecks) {
   std::stringstream text;
   text << summary.rdbuf();
   const std::string json = text.str();
-  for (const char* field : {"\"problem\": \"sod\"", "\"checks\"", "\"l1_density\"",
-                            "\"cell_steps_per_second\"", "\"drift\"", "\"status\": \"completed\""}) {
+  for (const char* field :
+       {"\"problem\": \"sod\"", "\"checks\"", "\"l1_density\"", "\"cell_steps_per_second\"",
+        "\"drift\"", "\"status\": \"completed\""}) {
     EXPECT_NE(json.find(field), std::string::npos) << field;
   }
   EXPECT_EQ(json.find("\"pass\": false"), std::string::npos) << json;
-  for (const char* file : {"history.csv", "sod_profile.csv", "fields.xmf", "fields_00000.h5",
-                           "fields_00001.h5"}) {
+  for (const char* file :
+       {"history.csv", "sod_profile.csv", "fields.xmf", "fields_00000.h5", "fields_00001.h5"}) {
     EXPECT_TRUE(std::filesystem::exists(dir + "/" + file)) << file;
   }
   std::filesystem::remove_all(dir);

@@ -29,7 +29,9 @@ void distortedHex(std::mt19937& rng, double amplitude, const Vec3& offset, Vec3 
   }
 }
 
-double volumeOf(const Vec3 x[8]) { return hex::cellShape(x).volume; }
+double volumeOf(const Vec3 x[8]) {
+  return hex::cellShape(x).volume;
+}
 
 TEST(Geometry, CornerVectorsAreTheVolumeGradient) {
   std::mt19937 rng(2026);
@@ -121,7 +123,7 @@ TEST(Geometry, AffineImagesOfTheCubeAreExact) {
 TEST(Geometry, FrustumVolumeAndCentroidAreExact) {
   // Square frustum: side a at z = 0, side b at z = h; planar trapezoid faces.
   const double a = 2.0, b = 0.8, h = 1.5;
-  const Vec3 x[8] = {{-a / 2, -a / 2, 0}, {a / 2, -a / 2, 0}, {a / 2, a / 2, 0},
+  const Vec3 x[8] = {{-a / 2, -a / 2, 0}, {a / 2, -a / 2, 0},  {a / 2, a / 2, 0},
                      {-a / 2, a / 2, 0},  {-b / 2, -b / 2, h}, {b / 2, -b / 2, h},
                      {b / 2, b / 2, h},   {-b / 2, b / 2, h}};
   const hex::CellShape shape = hex::cellShape(x);

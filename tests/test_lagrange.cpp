@@ -87,11 +87,11 @@ TEST(Lagrange, FreeStreamIsPreservedOnADistortedMesh) {
 TEST(Lagrange, ConservesMassMomentumAndEnergyWithWallsAndFreeSurfaces) {
   for (const char* gather : {"crs", "atomics"}) {
     for (const char* order : {"1", "2"}) {
-      RunOptions options = problemOptions(
-          "sedov",
-          {"mesh.nx=10", "mesh.ny=9", "mesh.nz=8", "bc.xmax=free", "bc.ymax=free",
-           "bc.zmax=free", "ambient.p=0.05", "t_end=0.2", std::string("numerics.gather=") + gather,
-           std::string("numerics.order=") + order});
+      RunOptions options =
+          problemOptions("sedov", {"mesh.nx=10", "mesh.ny=9", "mesh.nz=8", "bc.xmax=free",
+                                   "bc.ymax=free", "bc.zmax=free", "ambient.p=0.05", "t_end=0.2",
+                                   std::string("numerics.gather=") + gather,
+                                   std::string("numerics.order=") + order});
       const RunResult result = runProblem(options);
       ASSERT_FALSE(result.failed) << result.failure;
       EXPECT_GT(result.steps, 20);
@@ -172,8 +172,8 @@ TEST(Lagrange, CrsGatherIsBitIdenticalForOneAndTwoThreads) {
         std::to_string(threads) + " --output " + dir + "/t" + std::to_string(threads));
     ASSERT_EQ(result.exit_code, 0) << result.output;
   }
-  for (const char* name : {"/fields/density", "/fields/velocity", "/fields/internal_energy",
-                           "/mesh/coordinates"}) {
+  for (const char* name :
+       {"/fields/density", "/fields/velocity", "/fields/internal_energy", "/mesh/coordinates"}) {
     const auto one = readDataset(dir + "/t1/fields_00001.h5", name);
     const auto two = readDataset(dir + "/t2/fields_00001.h5", name);
     ASSERT_EQ(one.size(), two.size());

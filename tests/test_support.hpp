@@ -26,10 +26,10 @@ struct CommandResult {
 // advice on stderr and stderr holds only lagremap's own messages.
 inline CommandResult runLagremap(const std::string& args) {
   static int counter = 0;
-  const std::string stem = (std::filesystem::temp_directory_path() /
-                            ("lagremap_cmd_" + std::to_string(::getpid()) + "_" +
-                             std::to_string(counter++)))
-                               .string();
+  const std::string stem =
+      (std::filesystem::temp_directory_path() /
+       ("lagremap_cmd_" + std::to_string(::getpid()) + "_" + std::to_string(counter++)))
+          .string();
   const std::string command = "OMP_PROC_BIND=false " + std::string(LAGREMAP_EXE) + " " + args +
                               " >" + stem + ".out 2>" + stem + ".err";
   const int status = std::system(command.c_str());

@@ -13,8 +13,8 @@ namespace {
 TEST(Validation, DefaultProblemsPassTheirChecks) {
   for (const char* problem : {"sod", "sedov"}) {
     for (const char* order : {"1", "2"}) {
-      const RunResult result = runProblem(
-          testing::problemOptions(problem, {std::string("numerics.order=") + order}));
+      const RunResult result =
+          runProblem(testing::problemOptions(problem, {std::string("numerics.order=") + order}));
       ASSERT_FALSE(result.failed) << result.failure;
       for (const auto& check : result.checks) {
         std::printf("%s order %s: %-20s %.6g (reference %.6g, tolerance %.3g)\n", problem, order,
