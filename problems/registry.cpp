@@ -72,4 +72,19 @@ void hostCellShapes(const HostMesh& mesh, std::vector<double>& volume,
   }
 }
 
+ProblemSetup setupBlock(const Config& config, const Vec3& lo, const Vec3& hi,
+                        std::vector<MaterialParams> materials, CellShapes& shapes) {
+  BlockSpec block;
+  block.nx = int(config.integer("mesh.nx"));
+  block.ny = int(config.integer("mesh.ny"));
+  block.nz = int(config.integer("mesh.nz"));
+  block.lo = lo;
+  block.hi = hi;
+  ProblemSetup setup;
+  setup.mesh = buildBlockMesh(block, readBoundaries(config));
+  setup.materials = std::move(materials);
+  hostCellShapes(copyToHost(setup.mesh), shapes.volume, shapes.centroid);
+  return setup;
+}
+
 }  // namespace lagremap

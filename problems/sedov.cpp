@@ -40,21 +40,11 @@ ProblemSetup setupSedov(const Config& config) {
     throw ConfigError(
         "sedov: size, gamma - 1, ambient rho and p and blast energy must be positive");
   }
-  BlockSpec block;
-  block.nx = int(config.integer("mesh.nx"));
-  block.ny = int(config.integer("mesh.ny"));
-  block.nz = int(config.integer("mesh.nz"));
-  block.lo = {0.0, 0.0, 0.0};
-  block.hi = {size, size, size};
-  ProblemSetup setup;
-  setup.mesh = buildBlockMesh(block, readBoundaries(config));
   MaterialParams gas;
   gas.gamma = gamma;
-  setup.materials = {gas};
-
-  std::vector<double> volume;
-  std::vector<Vec3> centroid;
-  hostCellShapes(copyToHost(setup.mesh), volume, centroid);
+  CellShapes shapes;
+  ProblemSetup setup = setupBlock(config, {0.0, 0.0, 0.0}, {size, size, size}, {gas}, shapes);
+  const auto& volume = shapes.volume;
   InitialCells& cells = setup.cells;
   const double e0 = p0 / ((gamma - 1.0) * rho0);
   for (std::size_t c = 0; c < volume.size(); ++c) {

@@ -47,23 +47,13 @@ ProblemSetup setupSod(const Config& config) {
     throw ConfigError("sod: densities and pressures must be positive");
   }
 
-  BlockSpec block;
-  block.nx = int(config.integer("mesh.nx"));
-  block.ny = int(config.integer("mesh.ny"));
-  block.nz = int(config.integer("mesh.nz"));
-  block.lo = {x_min, 0.0, 0.0};
-  block.hi = {x_max, width, width};
-  ProblemSetup setup;
-  setup.mesh = buildBlockMesh(block, readBoundaries(config));
   MaterialParams gas;
   gas.gamma = gamma;
-  setup.materials = {gas};
-
-  std::vector<double> volume;
-  std::vector<Vec3> centroid;
-  hostCellShapes(copyToHost(setup.mesh), volume, centroid);
+  CellShapes shapes;
+  ProblemSetup setup = setupBlock(config, {x_min, 0.0, 0.0}, {x_max, width, width}, {gas}, shapes);
+  const auto& centroid = shapes.centroid;
   InitialCells& cells = setup.cells;
-  for (std::size_t c = 0; c < volume.size(); ++c) {
+  for (std::size_t c = 0; c < centroid.size(); ++c) {
     const GasState& side = centroid[c].x < x_interface ? left : right;
     cells.rho.push_back(side.rho);
     cells.e.push_back(side.p / ((gamma - 1.0) * side.rho));

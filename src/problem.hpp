@@ -64,4 +64,14 @@ SideBoundaries readBoundaries(const Config& config);
 // Volumes and centroids of the cells on the host (same formulas as the kernels).
 void hostCellShapes(const HostMesh& mesh, std::vector<double>& volume, std::vector<Vec3>& centroid);
 
+// Host geometry of the initial cells, for the generators' initial state.
+struct CellShapes {
+  std::vector<double> volume;
+  std::vector<Vec3> centroid;
+};
+// The mesh of a block [lo, hi] from the problem's mesh.n* and bc.* keys, with
+// the given material table and the shapes of its cells.
+ProblemSetup setupBlock(const Config& config, const Vec3& lo, const Vec3& hi,
+                        std::vector<MaterialParams> materials, CellShapes& shapes);
+
 }  // namespace lagremap

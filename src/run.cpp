@@ -42,31 +42,6 @@ Config declareConfig(const Problem& problem) {
 
 namespace {
 
-Numerics readNumerics(const Config& config) {
-  Numerics numerics;
-  numerics.order = int(config.integer("numerics.order"));
-  numerics.step.cfl = config.real("numerics.cfl");
-  numerics.step.c_vol = config.real("numerics.c_vol");
-  numerics.dt_growth = config.real("numerics.dt_growth");
-  numerics.dt_initial_factor = config.real("numerics.dt_initial_factor");
-  numerics.dt_min = config.real("numerics.dt_min_fraction") * config.real("t_end");
-  numerics.max_steps = config.integer("numerics.max_steps");
-  numerics.gather = config.text("numerics.gather") == "atomics" ? Gather::Atomics : Gather::Crs;
-  if (!(numerics.step.cfl > 0.0 && numerics.step.cfl <= 1.0)) {
-    throw ConfigError("numerics.cfl must be in (0, 1]");
-  }
-  if (!(numerics.step.c_vol > 0.0 && numerics.step.c_vol < 1.0)) {
-    throw ConfigError("numerics.c_vol must be in (0, 1)");
-  }
-  if (!(numerics.dt_growth >= 1.0)) throw ConfigError("numerics.dt_growth must be >= 1");
-  if (!(numerics.dt_initial_factor > 0.0 && numerics.dt_initial_factor <= 1.0)) {
-    throw ConfigError("numerics.dt_initial_factor must be in (0, 1]");
-  }
-  if (numerics.max_steps < 1) throw ConfigError("numerics.max_steps must be >= 1");
-  if (!(config.real("t_end") > 0.0)) throw ConfigError("t_end must be > 0");
-  return numerics;
-}
-
 FinalFields copyFields(const ProblemSetup& setup, const State& state, double time) {
   FinalFields fields;
   fields.time = time;
@@ -119,6 +94,31 @@ std::string formatSeconds(double seconds) {
 }
 
 }  // namespace
+
+Numerics readNumerics(const Config& config) {
+  Numerics numerics;
+  numerics.order = int(config.integer("numerics.order"));
+  numerics.step.cfl = config.real("numerics.cfl");
+  numerics.step.c_vol = config.real("numerics.c_vol");
+  numerics.dt_growth = config.real("numerics.dt_growth");
+  numerics.dt_initial_factor = config.real("numerics.dt_initial_factor");
+  numerics.dt_min = config.real("numerics.dt_min_fraction") * config.real("t_end");
+  numerics.max_steps = config.integer("numerics.max_steps");
+  numerics.gather = config.text("numerics.gather") == "atomics" ? Gather::Atomics : Gather::Crs;
+  if (!(numerics.step.cfl > 0.0 && numerics.step.cfl <= 1.0)) {
+    throw ConfigError("numerics.cfl must be in (0, 1]");
+  }
+  if (!(numerics.step.c_vol > 0.0 && numerics.step.c_vol < 1.0)) {
+    throw ConfigError("numerics.c_vol must be in (0, 1)");
+  }
+  if (!(numerics.dt_growth >= 1.0)) throw ConfigError("numerics.dt_growth must be >= 1");
+  if (!(numerics.dt_initial_factor > 0.0 && numerics.dt_initial_factor <= 1.0)) {
+    throw ConfigError("numerics.dt_initial_factor must be in (0, 1]");
+  }
+  if (numerics.max_steps < 1) throw ConfigError("numerics.max_steps must be >= 1");
+  if (!(config.real("t_end") > 0.0)) throw ConfigError("t_end must be > 0");
+  return numerics;
+}
 
 // Uploads the problem's initial cells: m = rho v (v from the same geometry
 // kernel the run uses), E = e + |V|^2 / 2.

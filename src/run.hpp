@@ -40,6 +40,11 @@ struct RunResult {
   bool checksPass() const;
 };
 
+struct Numerics;
+// The numerics.* keys (and t_end) as the time loop uses them; throws
+// ConfigError for impossible values.
+Numerics readNumerics(const Config& config);
+
 // Uploads a problem's initial cells into an allocated state: m = rho v (v from
 // the same geometry the kernels use), E = e + |V|^2 / 2, and the material table.
 void initializeState(const ProblemSetup& setup, State& state);
