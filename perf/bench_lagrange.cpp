@@ -36,18 +36,6 @@ constexpr long kStepsBetweenRestores = 50;
 // The fixed dt of the timed steps, as a fraction of the stable dt after warm-up.
 constexpr double kBenchDtFraction = 0.2;
 
-// BENCH-LOCAL COPY of the part of run.cpp's anonymous-namespace readNumerics()
-// the step uses (no validation); to go once run.hpp exposes it.
-Numerics readNumerics(const Config& config) {
-  Numerics numerics;
-  numerics.order = int(config.integer("numerics.order"));
-  numerics.step.cfl = config.real("numerics.cfl");
-  numerics.step.c_vol = config.real("numerics.c_vol");
-  numerics.dt_growth = config.real("numerics.dt_growth");
-  numerics.dt_initial_factor = config.real("numerics.dt_initial_factor");
-  numerics.gather = Gather::Crs;
-  return numerics;
-}
 
 // The developed blast and everything the benchmarks share.
 class Bench {
