@@ -24,6 +24,7 @@
 #include "kernels/nodal_solver.hpp"
 #include "src/lagrange_step.hpp"
 #include "src/problem.hpp"
+#include "src/floating_point.hpp"
 #include "src/run.hpp"
 
 namespace {
@@ -277,6 +278,7 @@ void registerBenchmarks() {
 }  // namespace
 
 int main(int argc, char* argv[]) {
+  lagremap::flushDenormalsToZero();  // as the lagremap driver does
   Kokkos::ScopeGuard kokkos(argc, argv);
   int n = 60;
   if (const char* env = std::getenv("LAGREMAP_BENCH_N")) n = std::atoi(env);

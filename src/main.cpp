@@ -2,8 +2,10 @@
 #include <Kokkos_Core.hpp>
 
 #include "cli.hpp"
+#include "floating_point.hpp"
 
 int main(int argc, char* argv[]) {
+  lagremap::flushDenormalsToZero();  // before Kokkos starts its threads, which inherit it
   Kokkos::ScopeGuard kokkos(argc, argv);
   return lagremap::runCommandLine(argc, argv);
 }
