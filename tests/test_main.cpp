@@ -5,11 +5,14 @@
 #include <Kokkos_Core.hpp>
 #include <cstdlib>
 
+#include "src/floating_point.hpp"
+
 int main(int argc, char* argv[]) {
   // Unbound threads, as Kokkos advises for unit tests (the OpenMP runtime
   // started unbound already); this also keeps Kokkos' binding advice off the
   // output that ctest's test discovery parses.
   setenv("OMP_PROC_BIND", "false", 0);
+  lagremap::flushDenormalsToZero();  // as the lagremap driver does
   Kokkos::ScopeGuard kokkos(argc, argv);
   ::testing::InitGoogleTest(&argc, argv);
   return RUN_ALL_TESTS();
