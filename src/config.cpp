@@ -255,6 +255,7 @@ std::string Config::printable() const {
     out << std::left << std::setw(static_cast<int>(width) + 2) << assignment << "# [" << param.unit
         << "] " << param.help;
     if (param.type == ParamType::Choice) out << " (" << typeName(param) << ")";
+    if (param.value != param.default_value) out << " [default " << param.default_value << "]";
     out << '\n';
   }
   return out.str();
