@@ -99,6 +99,13 @@ KOKKOS_INLINE_FUNCTION SymMat3 inverse(const SymMat3& m) {
 KOKKOS_INLINE_FUNCTION double ddot(const SymMat3& a, const SymMat3& b) {
   return a.xx * b.xx + a.yy * b.yy + a.zz * b.zz + 2.0 * (a.xy * b.xy + a.yz * b.yz + a.xz * b.xz);
 }
+KOKKOS_INLINE_FUNCTION SymMat3 operator-(const SymMat3& a, const SymMat3& b) {
+  return {a.xx - b.xx, a.yy - b.yy, a.zz - b.zz, a.xy - b.xy, a.yz - b.yz, a.xz - b.xz};
+}
+// Frobenius norm sqrt(a : a), the von Mises measure of a deviator (DESIGN §4).
+KOKKOS_INLINE_FUNCTION double norm(const SymMat3& a) {
+  return math::sqrt(ddot(a, a));
+}
 
 // General 3x3 tensor, row-major: m[i][j].
 struct Mat3 {
@@ -130,6 +137,69 @@ KOKKOS_INLINE_FUNCTION SymMat3 symPart(const Mat3& a) {
           0.5 * (a.m[0][1] + a.m[1][0]),
           0.5 * (a.m[1][2] + a.m[2][1]),
           0.5 * (a.m[0][2] + a.m[2][0])};
+}
+// (a - a^T)/2, e.g. the spin W of a velocity gradient.
+KOKKOS_INLINE_FUNCTION Mat3 skewPart(const Mat3& a) {
+  Mat3 w;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) w.m[i][j] = 0.5 * (a.m[i][j] - a.m[j][i]);
+  return w;
+}
+KOKKOS_INLINE_FUNCTION Mat3 identityMat(double s = 1.0) {
+  return {{{s, 0, 0}, {0, s, 0}, {0, 0, s}}};
+}
+KOKKOS_INLINE_FUNCTION Mat3 fullMat(const SymMat3& a) {
+  return {{{a.xx, a.xy, a.xz}, {a.xy, a.yy, a.yz}, {a.xz, a.yz, a.zz}}};
+}
+KOKKOS_INLINE_FUNCTION Mat3 transpose(const Mat3& a) {
+  Mat3 t;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) t.m[i][j] = a.m[j][i];
+  return t;
+}
+KOKKOS_INLINE_FUNCTION Mat3 operator+(const Mat3& a, const Mat3& b) {
+  Mat3 c;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) c.m[i][j] = a.m[i][j] + b.m[i][j];
+  return c;
+}
+KOKKOS_INLINE_FUNCTION Mat3 operator-(const Mat3& a, const Mat3& b) {
+  Mat3 c;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) c.m[i][j] = a.m[i][j] - b.m[i][j];
+  return c;
+}
+KOKKOS_INLINE_FUNCTION Mat3 operator*(double s, const Mat3& a) {
+  Mat3 c;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) c.m[i][j] = s * a.m[i][j];
+  return c;
+}
+KOKKOS_INLINE_FUNCTION Mat3 operator*(const Mat3& a, const Mat3& b) {
+  Mat3 c;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      c.m[i][j] = a.m[i][0] * b.m[0][j] + a.m[i][1] * b.m[1][j] + a.m[i][2] * b.m[2][j];
+  return c;
+}
+KOKKOS_INLINE_FUNCTION double det(const Mat3& a) {
+  return a.m[0][0] * (a.m[1][1] * a.m[2][2] - a.m[1][2] * a.m[2][1]) -
+         a.m[0][1] * (a.m[1][0] * a.m[2][2] - a.m[1][2] * a.m[2][0]) +
+         a.m[0][2] * (a.m[1][0] * a.m[2][1] - a.m[1][1] * a.m[2][0]);
+}
+
+// Inverse by cofactors (adjugate over determinant); the caller guarantees det != 0.
+KOKKOS_INLINE_FUNCTION Mat3 inverse(const Mat3& a) {
+  Mat3 inv;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      // cofactor of a_ji (transposed), cyclic indices give the sign
+      const int r0 = (j + 1) % 3, r1 = (j + 2) % 3, c0 = (i + 1) % 3, c1 = (i + 2) % 3;
+      inv.m[i][j] = a.m[r0][c0] * a.m[r1][c1] - a.m[r0][c1] * a.m[r1][c0];
+    }
+  const double inv_det =
+      1.0 / (a.m[0][0] * inv.m[0][0] + a.m[0][1] * inv.m[1][0] + a.m[0][2] * inv.m[2][0]);
+  return inv_det * inv;
 }
 
 // View accessors: read/write one entity's Vec3 / SymMat3 from SoA Views.

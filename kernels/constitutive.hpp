@@ -1,0 +1,111 @@
+// Deviatoric (strength) models of DESIGN §4, as pointwise device functions: the
+// Wilkins hypo-elastic update with radial return, and the Neo-Hookean
+// hyper-elastic stress from the left Cauchy-Green tensor B. Stress is the Cauchy
+// stress, tension positive, sigma = -p I + S (DESIGN §1). The velocity gradient
+// is L_ij = dV_i/dx_j (row i = velocity component, column j = derivative).
+#pragma once
+
+#include "eos.hpp"
+#include "math.hpp"
+
+namespace lagremap {
+
+namespace detail {
+// (A F^T)_ij = row i of A . row j of F.
+KOKKOS_INLINE_FUNCTION double rowDot(const Mat3& A, int i, const Mat3& F, int j) {
+  return A.m[i][0] * F.m[j][0] + A.m[i][1] * F.m[j][1] + A.m[i][2] * F.m[j][2];
+}
+}  // namespace detail
+
+// F B F^T, symmetric by construction (only the six independent entries are
+// formed). With F the deformation gradient over a step this advances the left
+// Cauchy-Green tensor, B_{n+1} = F B_n F^T, the exact integral of DESIGN §4's
+// dB/dt = L B + B L^T for that F; it keeps B positive definite whenever F is
+// invertible, which a forward-Euler step of the ODE does not guarantee.
+KOKKOS_INLINE_FUNCTION SymMat3 pushForward(const Mat3& F, const SymMat3& B) {
+  const Mat3 FB = F * fullMat(B);
+  return {detail::rowDot(FB, 0, F, 0), detail::rowDot(FB, 1, F, 1), detail::rowDot(FB, 2, F, 2),
+          detail::rowDot(FB, 0, F, 1), detail::rowDot(FB, 1, F, 2), detail::rowDot(FB, 0, F, 2)};
+}
+
+// Hypo-elastic Wilkins model, DESIGN §4: dS/dt = 2 mu D0 + W S - S W with
+// D = sym(L), D0 = dev(D), W = skew(L). The W terms make the rate objective (a
+// rigid spin only rotates S). Over a step the spin part is integrated by the
+// Hughes-Winget rotation Q = (I - dt/2 W)^-1 (I + dt/2 W), the Cayley
+// transform of W: Q is orthogonal to round-off, so S -> Q S Q^T keeps every
+// invariant of S exactly (an explicit Euler step would inflate them at first
+// order in dt), and Q = I + dt W + O(dt^2) agrees with the Jaumann rate. Then
+// the elastic increment 2 mu dt D0. The result is re-deviatorised because the
+// rotation keeps the trace only to round-off and a trace in S would
+// double-count the pressure of the EOS.
+KOKKOS_INLINE_FUNCTION Mat3 hughesWingetRotation(const Mat3& grad_v, double dt) {
+  const Mat3 half_spin = (0.5 * dt) * skewPart(grad_v);
+  return inverse(identityMat() - half_spin) * (identityMat() + half_spin);
+}
+
+KOKKOS_INLINE_FUNCTION SymMat3 jaumannUpdate(const SymMat3& S, const Mat3& grad_v, double mu,
+                                             double dt) {
+  const SymMat3 rotated = pushForward(hughesWingetRotation(grad_v, dt), S);  // Q S Q^T
+  return dev(rotated + (2.0 * mu * dt) * dev(symPart(grad_v)));
+}
+
+struct ReturnMapResult {
+  SymMat3 S;
+  bool yielded;  // the trial state lay outside the yield surface
+};
+
+// Radial return to the von Mises surface ||S|| = sqrt(S:S) = sqrt(2/3) Y0
+// (perfect plasticity, DESIGN §4). For J2 plasticity with a constant shear
+// modulus the closest-point projection is this radial scaling of the deviator;
+// the plastic work then reaches e through rho de/dt = sigma : grad V. States on
+// or inside the surface are returned unchanged (bit for bit).
+KOKKOS_INLINE_FUNCTION ReturnMapResult radialReturn(const SymMat3& S_trial, double yield_stress) {
+  const double radius = math::sqrt(2.0 / 3.0) * yield_stress;
+  const double trial_norm = norm(S_trial);
+  if (trial_norm > radius) return {(radius / trial_norm) * S_trial, true};
+  return {S_trial, false};
+}
+
+// Neo-Hookean deviator S = (mu/J) dev(Bbar), Bbar = det(B)^{-1/3} B (DESIGN §4).
+// The isochoric scaling uses det(B) rather than J^2 = (rho0/rho)^2: B and the
+// density are advanced by different discretisations, and normalising B by its
+// own determinant keeps a pure volume change (B = c I) stress-free in shear
+// whatever the drift between them. J (the density ratio) only scales.
+KOKKOS_INLINE_FUNCTION SymMat3 neoHookeanDeviator(const SymMat3& B, double J, double mu) {
+  return (mu / (J * math::cbrt(det(B)))) * dev(B);
+}
+
+struct PressureDeviator {
+  double pressure;
+  SymMat3 S;
+};
+
+// Both halves of the Neo-Hookean Cauchy stress (DESIGN §4), for kernels that
+// store p and S separately, as for the hypo-elastic solids. The pressure is the
+// same function the EosKind::NeoHookean branch of evaluateEos uses.
+KOKKOS_INLINE_FUNCTION PressureDeviator neoHookeanPressureDeviator(const SymMat3& B, double J,
+                                                                   double mu, double kappa) {
+  return {neoHookeanPressure(J, kappa), neoHookeanDeviator(B, J, mu)};
+}
+
+// Cauchy stress sigma = -p I + S, p = -kappa/2 [(J-1) + ln(J)/J],
+// S = (mu/J) dev(det(B)^{-1/3} B), J = rho0/rho (DESIGN §4).
+KOKKOS_INLINE_FUNCTION SymMat3 neoHookeanStress(const SymMat3& B, double J, double mu,
+                                                double kappa) {
+  const PressureDeviator split = neoHookeanPressureDeviator(B, J, mu, kappa);
+  return split.S + identitySym(-split.pressure);
+}
+
+// Elastic wave speeds of a solid with shear modulus mu: transverse aT^2 =
+// mu/rho, longitudinal aL^2 = a^2 + 4/3 aT^2 with a^2 the bulk (EOS) sound
+// speed. The longitudinal one is the fastest signal, so the time step and the
+// nodal-solver impedance of a solid should use it rather than the bulk a.
+KOKKOS_INLINE_FUNCTION double transverseSoundSpeed2(double mu, double rho) {
+  return mu / rho;
+}
+KOKKOS_INLINE_FUNCTION double longitudinalSoundSpeed2(double bulk_sound_speed2, double mu,
+                                                      double rho) {
+  return bulk_sound_speed2 + (4.0 / 3.0) * transverseSoundSpeed2(mu, rho);
+}
+
+}  // namespace lagremap
