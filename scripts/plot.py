@@ -38,6 +38,7 @@ import matplotlib
 matplotlib.use("Agg")  # never needs a display: runs in CI and over ssh
 import matplotlib.pyplot as plt  # noqa: E402  (must follow matplotlib.use)
 from matplotlib.lines import Line2D  # noqa: E402
+from matplotlib.collections import PolyCollection  # noqa: E402
 from matplotlib.tri import Triangulation  # noqa: E402
 
 DPI = 120
@@ -354,27 +355,43 @@ def triangulate_points(x: np.ndarray, y: np.ndarray) -> Triangulation:
     return tri
 
 
+CORNER_COLUMNS = ["x0", "y0", "x1", "y1", "x2", "y2", "x3", "y3"]
+
+
 def plot_slice_fields(run: Run, out_path: str) -> str:
     """Density and pressure maps of the cell layer nearest z = 0.
 
-    Drawn on a triangulation of the centroids rather than an image grid
-    because after Lagrangian motion the cells are no longer on a lattice;
-    equal aspect keeps circles circular, so asymmetry is real, not an
-    artefact of the axes.
+    When the CSV carries each cell's corners, the cells are drawn as they are
+    (a PolyCollection of the moved quadrilaterals), so a Lagrangian mesh shows
+    its true cells, large or crushed; otherwise a triangulation of the
+    centroids stands in. Equal aspect keeps circles circular, so asymmetry is
+    real, not an artefact of the axes.
     """
     name = "slice_z.csv"
     fields = ["rho", "p"]
     t = run.table(name, ["x", "y"] + fields)
     x, y = t["x"], t["y"]
+    has_corners = all(column in t for column in CORNER_COLUMNS)
 
     fig, axes = plt.subplots(1, 2, figsize=(12, 5.4))
-    try:
-        tri = triangulate_points(x, y)
-    except (ValueError, RuntimeError):
-        tri = None  # fewer than 3 points or all collinear: fall back below
+    tri = None
+    if not has_corners:
+        try:
+            tri = triangulate_points(x, y)
+        except (ValueError, RuntimeError):
+            tri = None  # fewer than 3 points or all collinear: scatter below
     for ax, field in zip(axes, fields):
         v = t[field]
-        if tri is not None:
+        if has_corners:
+            quads = np.stack([np.column_stack([t[f"x{k}"], t[f"y{k}"]]) for k in range(4)],
+                             axis=1)
+            thin_edges = len(x) < 2000
+            art = PolyCollection(quads, array=v, cmap="viridis",
+                                 edgecolors="0.3" if thin_edges else "face",
+                                 linewidths=0.2 if thin_edges else 0.0)
+            ax.add_collection(art)
+            ax.autoscale_view()
+        elif tri is not None:
             art = ax.tripcolor(tri, v, shading="gouraud", cmap="viridis")
         else:
             art = ax.scatter(x, y, c=v, s=12, cmap="viridis")
