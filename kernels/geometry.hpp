@@ -75,7 +75,7 @@ inline StepLimit computeGeometry(const Mesh& mesh, const State& state,
         const bool finite_state =
             math::isfinite(e) && math::isfinite(thermo.pressure) && math::isfinite(rho);
         cellStepLimit(best, controls, c, volume, length, thermo.sound_speed2, s.dvdt_c(c),
-                      finite_state);
+                      finite_state, thermo.valid);
       },
       StepLimitReducer(limit));
   return limit;

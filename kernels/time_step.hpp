@@ -13,6 +13,7 @@ enum StepLimitCode : int {
   kBadVolume = 4,      // v_c <= 0 (tangled cell)
   kBadState = 5,       // NaN or infinite mass, energy or velocity
   kBadSoundSpeed = 6,  // a^2 <= 0 (negative internal energy / pressure)
+  kBadEos = 7,         // outside the EOS's domain (Mie-Gruneisen: eta - s (eta - 1) <= 0)
 };
 constexpr int kLimitCodes = 8;
 
@@ -34,8 +35,10 @@ KOKKOS_INLINE_FUNCTION void proposeStepLimit(StepLimit& best, double dt, int cel
 // Invalid states propose a negative dt so they win the min reduction.
 KOKKOS_INLINE_FUNCTION void cellStepLimit(StepLimit& best, const TimeStepControls& controls,
                                           int cell, double volume, double length,
-                                          double sound_speed2, double dvdt, bool finite_state) {
+                                          double sound_speed2, double dvdt, bool finite_state,
+                                          bool eos_valid) {
   if (!(volume > 0.0)) return proposeStepLimit(best, -1.0, cell, kBadVolume);
+  if (!eos_valid) return proposeStepLimit(best, -1.0, cell, kBadEos);
   if (!finite_state) return proposeStepLimit(best, -1.0, cell, kBadState);
   if (!(sound_speed2 > 0.0)) return proposeStepLimit(best, -1.0, cell, kBadSoundSpeed);
   proposeStepLimit(best, controls.cfl * length / math::sqrt(sound_speed2), cell, kLimitCfl);

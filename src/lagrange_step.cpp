@@ -14,6 +14,9 @@ std::string describeInvalidCell(const StepLimit& limit, long step, const char* w
     case kBadState:
       what = "NaN or infinite energy or velocity";
       break;
+    case kBadEos:
+      what = "equation of state out of range (Mie-Gruneisen: eta - s (eta - 1) <= 0)";
+      break;
     case kBadSoundSpeed:
       what = "non-positive squared sound speed (negative energy/pressure)";
       break;

@@ -9,6 +9,7 @@
 #include <filesystem>
 
 #include "src/lagrange_step.hpp"
+#include "src/materials.hpp"
 #include "test_support.hpp"
 
 namespace lagremap {
@@ -77,6 +78,36 @@ TEST(Lagrange, FreeStreamIsPreservedOnADistortedMesh) {
     for (Index n = 0; n < setup.mesh.n_nodes; ++n) {
       const Vec3 moved = loadVec3(x, n) - loadVec3(x_start, n);
       EXPECT_LT(norm(moved - t * velocity), 1e-13) << "order " << order;
+    }
+  }
+}
+
+// A Mie-Gruneisen solid compressed past eta = s / (s - 1) has no state: the
+// geometry phase reports the cell with that reason instead of carrying on.
+TEST(Lagrange, MieGruneisenLimitingCompressionIsAClearFailure) {
+  const MaterialParams aluminium = materialPreset("Al");
+  for (double eta : {1.2, 4.0}) {
+    BlockSpec block;
+    block.nx = 3;
+    ProblemSetup setup;
+    setup.mesh = buildBlockMesh(block, SideBoundaries{});
+    setup.materials = {aluminium};
+    const Index n_cells = setup.mesh.n_cells;
+    setup.cells.rho.assign(n_cells, eta * aluminium.rho0);
+    setup.cells.e.assign(n_cells, 1e4);
+    setup.cells.v.assign(n_cells, Vec3{0, 0, 0});
+    setup.cells.mat.assign(n_cells, 0);
+    State state = allocateState(setup.mesh, false);
+    initializeState(setup, state);
+    const StepLimit limit = computeGeometry(setup.mesh, state, TimeStepControls{});
+    if (eta < 2.0) {
+      // valid: CFL step from the Mie-Gruneisen sound speed
+      const ThermoState thermo = evaluateEos(aluminium, eta * aluminium.rho0, 1e4);
+      EXPECT_NEAR(limit.val, 0.4 * (1.0 / 3.0) / std::sqrt(thermo.sound_speed2), 1e-12);
+    } else {
+      EXPECT_LT(limit.val, 0.0);
+      EXPECT_EQ(limit.loc % kLimitCodes, kBadEos);
+      EXPECT_NE(describeInvalidCell(limit, 7, "test").find("Mie-Gruneisen"), std::string::npos);
     }
   }
 }
