@@ -22,9 +22,9 @@
 
 #include "kernels/geometry.hpp"
 #include "kernels/nodal_solver.hpp"
+#include "src/floating_point.hpp"
 #include "src/lagrange_step.hpp"
 #include "src/problem.hpp"
-#include "src/floating_point.hpp"
 #include "src/run.hpp"
 
 namespace {
@@ -36,7 +36,6 @@ using namespace lagremap;
 constexpr long kStepsBetweenRestores = 50;
 // The fixed dt of the timed steps, as a fraction of the stable dt after warm-up.
 constexpr double kBenchDtFraction = 0.2;
-
 
 // The developed blast and everything the benchmarks share.
 class Bench {

@@ -21,7 +21,7 @@ min_time=${BENCH_MIN_TIME:-0.2}
 repetitions=${BENCH_REPETITIONS:-3}
 threads=${BENCH_THREADS:-1 2}
 filter=${BENCH_FILTER:-.}
-work=$(mktemp -d /tmp/lagremap-bench.XXXXXX)
+work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
 # Busy CPU ticks of the whole machine so far (user nice system irq softirq steal).

@@ -7,7 +7,7 @@
 
 #include "kernels/geometry.hpp"
 #include "kernels/nodal_solver.hpp"
-#include "src/run.hpp"
+#include "test_support.hpp"
 
 namespace lagremap {
 namespace {
@@ -145,17 +145,9 @@ TEST(Geometry, MeshKernelsConserveVolumeAndCancelAtInteriorNodes) {
   block.lo = {-1.0, 0.0, 2.0};
   block.hi = {2.0, 1.0, 3.5};
   block.perturbation = 0.3;
-  SideBoundaries walls;
-  ProblemSetup setup;
-  setup.mesh = buildBlockMesh(block, walls);
-  setup.materials = {MaterialParams{}};
+  auto [setup, state] =
+      testing::uniformBlock(block, SideBoundaries{}, MaterialParams{}, 1.0, 1.0, Vec3{0, 0, 0});
   const Index n_cells = setup.mesh.n_cells;
-  setup.cells.rho.assign(n_cells, 1.0);
-  setup.cells.e.assign(n_cells, 1.0);
-  setup.cells.v.assign(n_cells, Vec3{0, 0, 0});
-  setup.cells.mat.assign(n_cells, 0);
-  State state = allocateState(setup.mesh, false);
-  initializeState(setup, state);
   const StepLimit limit = computeGeometry(setup.mesh, state, TimeStepControls{});
   EXPECT_GT(limit.val, 0.0);
   computeCornerTerms(setup.mesh, state, CornerControls{2, Gather::Crs});

@@ -41,16 +41,10 @@ TEST(Lagrange, FreeStreamIsPreservedOnADistortedMesh) {
       side.kind = BoundaryKind::Traction;
       side.traction_stress = identitySym(-p0);
     }
-    ProblemSetup setup;
-    setup.mesh = buildBlockMesh(block, sides);
-    setup.materials = {MaterialParams{EosKind::IdealGas, gamma}};
+    auto [setup, state] =
+        testing::uniformBlock(block, sides, MaterialParams{EosKind::IdealGas, gamma}, rho0,
+                              p0 / ((gamma - 1) * rho0), velocity);
     const Index n_cells = setup.mesh.n_cells;
-    setup.cells.rho.assign(n_cells, rho0);
-    setup.cells.e.assign(n_cells, p0 / ((gamma - 1) * rho0));
-    setup.cells.v.assign(n_cells, velocity);
-    setup.cells.mat.assign(n_cells, 0);
-    State state = allocateState(setup.mesh, false);
-    initializeState(setup, state);
     // A true copy: on host backends a mirror view would alias x_n, whose buffer
     // the step reuses (DESIGN §6: Mesh::x_n and State::x_n_next trade places).
     auto x_start = Kokkos::create_mirror(setup.mesh.x_n);
@@ -89,16 +83,8 @@ TEST(Lagrange, MieGruneisenLimitingCompressionIsAClearFailure) {
   for (double eta : {1.2, 4.0}) {
     BlockSpec block;
     block.nx = 3;
-    ProblemSetup setup;
-    setup.mesh = buildBlockMesh(block, SideBoundaries{});
-    setup.materials = {aluminium};
-    const Index n_cells = setup.mesh.n_cells;
-    setup.cells.rho.assign(n_cells, eta * aluminium.rho0);
-    setup.cells.e.assign(n_cells, 1e4);
-    setup.cells.v.assign(n_cells, Vec3{0, 0, 0});
-    setup.cells.mat.assign(n_cells, 0);
-    State state = allocateState(setup.mesh, false);
-    initializeState(setup, state);
+    auto [setup, state] = testing::uniformBlock(block, SideBoundaries{}, aluminium,
+                                                eta * aluminium.rho0, 1e4, Vec3{0, 0, 0});
     const StepLimit limit = computeGeometry(setup.mesh, state, TimeStepControls{});
     if (eta < 2.0) {
       // valid: CFL step from the Mie-Gruneisen sound speed

@@ -57,6 +57,28 @@ inline std::string scratchDir(const std::string& name) {
   return dir.string();
 }
 
+// A block of one material in a uniform state, uploaded into a fresh State.
+struct UniformBlock {
+  ProblemSetup setup;
+  State state;
+};
+inline UniformBlock uniformBlock(const BlockSpec& block, const SideBoundaries& sides,
+                                 const MaterialParams& material, double rho, double e,
+                                 const Vec3& velocity) {
+  UniformBlock uniform;
+  ProblemSetup& setup = uniform.setup;
+  setup.mesh = buildBlockMesh(block, sides);
+  setup.materials = {material};
+  const Index n_cells = setup.mesh.n_cells;
+  setup.cells.rho.assign(n_cells, rho);
+  setup.cells.e.assign(n_cells, e);
+  setup.cells.v.assign(n_cells, velocity);
+  setup.cells.mat.assign(n_cells, 0);
+  uniform.state = allocateState(setup.mesh, false);
+  initializeState(setup, uniform.state);
+  return uniform;
+}
+
 // Run options of a built-in problem with `key=value` overrides; no files.
 inline RunOptions problemOptions(const std::string& problem,
                                  const std::vector<std::string>& assignments = {},
