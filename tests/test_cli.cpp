@@ -121,6 +121,26 @@ TEST(CommandLine, SodRunWritesSummaryWithPassingChecks) {
   std::filesystem::remove_all(dir);
 }
 
+// Snapshots at the requested times (hit exactly) plus the initial and final
+// states, listed in the series file ParaView opens.
+TEST(CommandLine, SnapshotsAtRequestedTimes) {
+  const std::string dir = testing::scratchDir("cli_snapshots");
+  const auto result = runLagremap("--problem sod --quiet --output-times 0.05,0.1 --output " + dir);
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  for (const char* file :
+       {"fields_00000.h5", "fields_00001.h5", "fields_00002.h5", "fields_00003.h5", "fields.xmf"}) {
+    EXPECT_TRUE(std::filesystem::exists(dir + "/" + file)) << file;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir + "/fields_00004.h5"));
+  std::ifstream series(dir + "/fields.xmf");
+  std::stringstream text;
+  text << series.rdbuf();
+  for (const char* time : {"\"0\"", "\"0.05\"", "\"0.1\"", "\"0.2\""}) {
+    EXPECT_NE(text.str().find(std::string("Value=") + time), std::string::npos) << time;
+  }
+  std::filesystem::remove_all(dir);
+}
+
 // Mid-run failures stop with exit code 3, one line naming step and reason, and
 // the last good state written (summary with status "failed" and a snapshot).
 TEST(CommandLine, FailureMidRunGivesExitCodeThreeAndWritesLastGoodState) {
