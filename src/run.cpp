@@ -10,6 +10,8 @@
 #include <iostream>
 #include <memory>
 
+#include <unistd.h>
+
 #include "diagnostics.hpp"
 #include "io/snapshot_writer.hpp"
 #include "json.hpp"
@@ -76,6 +78,24 @@ void writeSnapshot(io::SnapshotSeries& series, const FinalFields& fields) {
                 {"internal_energy", fields.e.data(), 1},
                 {"volume", fields.vol.data(), 1},
                 {"velocity", velocity.data(), 3}});
+}
+
+// A mesh that cannot fit in memory is bad input, said before anything is
+// allocated (the operating system would otherwise kill the run). About 1.2 kB
+// per cell: corner records, cell and node fields, host copies for output.
+void checkMemoryFits(const Config& config) {
+  if (!config.has("mesh.nx") || !config.has("mesh.ny") || !config.has("mesh.nz")) return;
+  const double cells = double(config.integer("mesh.nx")) * double(config.integer("mesh.ny")) *
+                       double(config.integer("mesh.nz"));
+  const double needed = 1200.0 * cells;
+  const double available = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
+  if (available > 0 && needed > 0.8 * available) {
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  "mesh of %.3g cells needs about %.1f GB, more than this machine's %.1f GB", cells,
+                  needed / 1e9, available / 1e9);
+    throw ConfigError(text);
+  }
 }
 
 const char* limitReason(const StepLimit& limit) {
@@ -175,6 +195,7 @@ RunResult runProblem(const RunOptions& options) {
   }
   if (options.output_every < 0) throw ConfigError("--output-every must be >= 0");
 
+  checkMemoryFits(config);
   ProblemSetup setup;
   try {
     setup = problem.setup(config);

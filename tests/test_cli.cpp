@@ -51,6 +51,8 @@ TEST(CommandLine, MalformedInputGivesExitCodeTwoAndOneLine) {
       {"--problem sod --output-times 0.5", "output time"},
       {"--problem sod --set gas.gamma=1", "gamma"},
       {"--problem sod --set geometry.x_interface=3", "x_interface"},
+      {"--problem sod --set mesh.nx=100000000", "GB"},
+      {"--output /proc/no/such/dir --problem sod", "output directory"},
   };
   for (const BadInput& bad : table) {
     const std::string args = bad.args;
