@@ -14,46 +14,44 @@ namespace lagremap {
 // (ideal gas, gamma = 1.4; its state is set per problem). Neo-Hookean presets
 // leave `mu` at 0: their shear modulus is shearModulus(mat) = E/(2(1+nu)), so an
 // override of E or nu cannot leave a stale mu behind.
-inline MaterialParams materialPreset(const std::string& name) {
+namespace detail {
+// Mie-Gruneisen EOS with Wilkins hypo-elastic perfect plasticity.
+inline MaterialParams hypoElasticMieGruneisen(double rho0, double a0, double Gamma0, double s,
+                                              double mu, double yield_stress) {
   MaterialParams mat;
-  if (name == "Gas") {
-    mat.eos = EosKind::IdealGas;
-    mat.gamma = 1.4;
-  } else if (name == "Al") {
-    mat.eos = EosKind::MieGruneisen;
-    mat.rho0 = 2785.0;
-    mat.a0 = 5328.0;
-    mat.Gamma0 = 2.0;
-    mat.s = 1.338;
-    mat.strength = StrengthKind::HypoElastic;
-    mat.mu = 27.6e9;
-    mat.yield_stress = 3.0e8;
-  } else if (name == "Be-hypo") {
-    mat.eos = EosKind::MieGruneisen;
-    mat.rho0 = 1845.0;
-    mat.a0 = 12870.0;
-    mat.Gamma0 = 2.0;
-    mat.s = 1.124;
-    mat.strength = StrengthKind::HypoElastic;
-    mat.mu = 151.9e9;
-    mat.yield_stress = 330.0e6;
-  } else if (name == "Steel-hyper") {
-    mat.eos = EosKind::NeoHookean;
-    mat.rho0 = 8000.0;
-    mat.strength = StrengthKind::NeoHookean;
-    mat.young = 200.0e9;
-    mat.poisson = 0.0;
-  } else if (name == "Be-hyper") {
-    mat.eos = EosKind::NeoHookean;
-    mat.rho0 = 1845.0;
-    mat.strength = StrengthKind::NeoHookean;
-    mat.young = 3.1827e11;
-    mat.poisson = 0.0539;
-  } else {
-    throw std::invalid_argument("unknown material preset '" + name +
-                                "' (known: Al, Be-hypo, Steel-hyper, Be-hyper, Gas)");
-  }
+  mat.eos = EosKind::MieGruneisen;
+  mat.rho0 = rho0;
+  mat.a0 = a0;
+  mat.Gamma0 = Gamma0;
+  mat.s = s;
+  mat.strength = StrengthKind::HypoElastic;
+  mat.mu = mu;
+  mat.yield_stress = yield_stress;
   return mat;
+}
+// Neo-Hookean hyper-elastic solid (volumetric and deviatoric parts).
+inline MaterialParams neoHookean(double rho0, double young, double poisson) {
+  MaterialParams mat;
+  mat.eos = EosKind::NeoHookean;
+  mat.rho0 = rho0;
+  mat.strength = StrengthKind::NeoHookean;
+  mat.young = young;
+  mat.poisson = poisson;
+  return mat;
+}
+}  // namespace detail
+
+inline MaterialParams materialPreset(const std::string& name) {
+  if (name == "Gas") return MaterialParams{EosKind::IdealGas, 1.4};
+  if (name == "Al")
+    return detail::hypoElasticMieGruneisen(2785.0, 5328.0, 2.0, 1.338, 27.6e9, 3.0e8);
+  if (name == "Be-hypo") {
+    return detail::hypoElasticMieGruneisen(1845.0, 12870.0, 2.0, 1.124, 151.9e9, 330.0e6);
+  }
+  if (name == "Steel-hyper") return detail::neoHookean(8000.0, 200.0e9, 0.0);
+  if (name == "Be-hyper") return detail::neoHookean(1845.0, 3.1827e11, 0.0539);
+  throw std::invalid_argument("unknown material preset '" + name +
+                              "' (known: Al, Be-hypo, Steel-hyper, Be-hyper, Gas)");
 }
 
 }  // namespace lagremap
