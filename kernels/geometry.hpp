@@ -19,6 +19,60 @@ KOKKOS_INLINE_FUNCTION void gatherCellNodes(const CellNodesView& cell_nodes, con
   for (int p = 0; p < 8; ++p) x[p] = loadVec3(x_n, cell_nodes(c, p));
 }
 
+// Geometry, thermodynamic closure and corner impedance of one cell, and its
+// time-step candidates folded into `best` (DESIGN §2-3).
+KOKKOS_INLINE_FUNCTION void cellGeometryAndThermo(const CellNodesView& cell_nodes,
+                                                  const Vec3View& x_n, const State& s,
+                                                  const TimeStepControls& controls, Index c,
+                                                  StepLimit& best) {
+  Vec3 x[8];
+  gatherCellNodes(cell_nodes, x_n, c, x);
+  hex::CellGeometry geo;
+  hex::cellGeometry(x, geo);
+  const double volume = geo.shape.volume;
+  s.vol_c(c) = volume;
+  storeVec3(s.x_c, c, geo.shape.centroid);
+  const double length = volume / geo.shape.max_face_area;
+  s.len_c(c) = length;
+
+  const Vec3 v = loadVec3(s.v_c, c);
+  const double rho = s.m_c(c) / volume;
+  const double e = s.E_c(c) - 0.5 * dot(v, v);
+  const ThermoState thermo = evaluateEos(s.materials(s.mat_c(c)), rho, e);
+  const double aL = thermo.sound_speed2 > 0.0 ? math::sqrt(thermo.sound_speed2) : 0.0;
+  const double aT = 0.0;  // fluids carry no transverse impedance
+  s.rho_c(c) = rho;
+  s.e_c(c) = e;
+  s.p_c(c) = thermo.pressure;
+  s.aL_c(c) = aL;
+  s.aT_c(c) = aT;
+
+  // Corner impedance (DESIGN §3, nodal solver).
+  SymMat3 impedance[8];
+  for (int p = 0; p < 8; ++p) impedance[p] = identitySym(0.0);
+  const double rho_aL = rho * aL, rho_aT = rho * aT;
+  for (int f = 0; f < 6; ++f) {
+    for (int k = 0; k < 4; ++k) {
+      const Vec3& w = geo.corner_face[f][k];
+      const double area2 = dot(w, w);
+      if (!(area2 > 0.0)) continue;  // degenerate corner face carries no impedance
+      const double area = math::sqrt(area2);
+      SymMat3& m = impedance[hex::faceNode(f, k)];
+      m += outerSelf(w, (rho_aL - rho_aT) / area);
+      if (rho_aT != 0.0) m += identitySym(rho_aT * area);
+    }
+  }
+  for (int p = 0; p < 8; ++p) {
+    storeVec3(s.A_cp, 8 * c + p, geo.corner[p]);
+    storeSym(s.M_cp, 8 * c + p, impedance[p]);
+  }
+
+  const bool finite_state =
+      math::isfinite(e) && math::isfinite(thermo.pressure) && math::isfinite(rho);
+  cellStepLimit(best, controls, c, volume, length, thermo.sound_speed2, s.dvdt_c(c), finite_state,
+                thermo.valid);
+}
+
 // Returns the smallest time-step candidate (or a negative value and the
 // failure code for an invalid cell).
 inline StepLimit computeGeometry(const Mesh& mesh, const State& state,
@@ -30,52 +84,7 @@ inline StepLimit computeGeometry(const Mesh& mesh, const State& state,
   Kokkos::parallel_reduce(
       "lagremap::geometry::cells", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
       KOKKOS_LAMBDA(const Index c, StepLimit& best) {
-        Vec3 x[8];
-        gatherCellNodes(cell_nodes, x_n, c, x);
-        hex::CellGeometry geo;
-        hex::cellGeometry(x, geo);
-        const double volume = geo.shape.volume;
-        s.vol_c(c) = volume;
-        storeVec3(s.x_c, c, geo.shape.centroid);
-        const double length = volume / geo.shape.max_face_area;
-        s.len_c(c) = length;
-
-        const Vec3 v = loadVec3(s.v_c, c);
-        const double rho = s.m_c(c) / volume;
-        const double e = s.E_c(c) - 0.5 * dot(v, v);
-        const ThermoState thermo = evaluateEos(s.materials(s.mat_c(c)), rho, e);
-        const double aL = thermo.sound_speed2 > 0.0 ? math::sqrt(thermo.sound_speed2) : 0.0;
-        const double aT = 0.0;  // fluids carry no transverse impedance
-        s.rho_c(c) = rho;
-        s.e_c(c) = e;
-        s.p_c(c) = thermo.pressure;
-        s.aL_c(c) = aL;
-        s.aT_c(c) = aT;
-
-        // Corner impedance (DESIGN §3, nodal solver).
-        SymMat3 impedance[8];
-        for (int p = 0; p < 8; ++p) impedance[p] = identitySym(0.0);
-        const double rho_aL = rho * aL, rho_aT = rho * aT;
-        for (int f = 0; f < 6; ++f) {
-          for (int k = 0; k < 4; ++k) {
-            const Vec3& w = geo.corner_face[f][k];
-            const double area2 = dot(w, w);
-            if (!(area2 > 0.0)) continue;  // degenerate corner face carries no impedance
-            const double area = math::sqrt(area2);
-            SymMat3& m = impedance[hex::faceNode(f, k)];
-            m += outerSelf(w, (rho_aL - rho_aT) / area);
-            if (rho_aT != 0.0) m += identitySym(rho_aT * area);
-          }
-        }
-        for (int p = 0; p < 8; ++p) {
-          storeVec3(s.A_cp, 8 * c + p, geo.corner[p]);
-          storeSym(s.M_cp, 8 * c + p, impedance[p]);
-        }
-
-        const bool finite_state =
-            math::isfinite(e) && math::isfinite(thermo.pressure) && math::isfinite(rho);
-        cellStepLimit(best, controls, c, volume, length, thermo.sound_speed2, s.dvdt_c(c),
-                      finite_state, thermo.valid);
+        cellGeometryAndThermo(cell_nodes, x_n, s, controls, c, best);
       },
       StepLimitReducer(limit));
   return limit;

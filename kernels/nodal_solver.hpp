@@ -13,6 +13,7 @@
 
 #include "../src/mesh.hpp"
 #include "../src/state.hpp"
+#include "geometry.hpp"
 #include "hex.hpp"
 #include "reconstruction.hpp"
 
@@ -232,29 +233,54 @@ inline void nodalSolve(const Mesh& mesh, const State& state, const CornerControl
       });
 }
 
-// Corner forces and the cell update from the start-of-step state (DESIGN §3):
-//   m_c dV_c/dt = sum_p F_cp,  m_c dE_c/dt = sum_p F_cp . V_p.
+// Corner forces and the update of one cell from the start-of-step state
+// (DESIGN §3): F_cp = M_cp V_p - B_cp,
+//   m_c dV_c/dt = sum_p F_cp,  m_c dE_c/dt = sum_p F_cp . V_p,
+// and dv_c/dt = sum_p A_cp . V_p for the next time step.
+KOKKOS_INLINE_FUNCTION void updateCell(const CellNodesView& cell_nodes, const State& s,
+                                       double dt_stage, Index c) {
+  Vec3 force{0, 0, 0};
+  double power = 0.0, dvdt = 0.0;
+  for (int p = 0; p < 8; ++p) {
+    const Index corner = 8 * c + p;
+    const Vec3 v_node = loadVec3(s.v_n, cell_nodes(c, p));
+    const Vec3 f_corner = loadSym(s.M_cp, corner) * v_node - loadVec3(s.B_cp, corner);
+    force += f_corner;
+    power += dot(f_corner, v_node);
+    dvdt += dot(loadVec3(s.A_cp, corner), v_node);
+  }
+  const double dt_over_m = dt_stage / s.m_c(c);
+  storeVec3(s.v_c, c, loadVec3(s.v_c0, c) + dt_over_m * force);
+  s.E_c(c) = s.E_c0(c) + dt_over_m * power;
+  s.dvdt_c(c) = dvdt;
+}
+
 inline void updateCells(const Mesh& mesh, const State& state, double dt_stage) {
   const auto cell_nodes = mesh.cell_nodes;
   const auto s = state;
   Kokkos::parallel_for(
       "lagremap::cell_update::corner_forces", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
-      KOKKOS_LAMBDA(const Index c) {
-        Vec3 force{0, 0, 0};
-        double power = 0.0, dvdt = 0.0;
-        for (int p = 0; p < 8; ++p) {
-          const Index corner = 8 * c + p;
-          const Vec3 v_node = loadVec3(s.v_n, cell_nodes(c, p));
-          const Vec3 f_corner = loadSym(s.M_cp, corner) * v_node - loadVec3(s.B_cp, corner);
-          force += f_corner;
-          power += dot(f_corner, v_node);
-          dvdt += dot(loadVec3(s.A_cp, corner), v_node);
-        }
-        const double dt_over_m = dt_stage / s.m_c(c);
-        storeVec3(s.v_c, c, loadVec3(s.v_c0, c) + dt_over_m * force);
-        s.E_c(c) = s.E_c0(c) + dt_over_m * power;
-        s.dvdt_c(c) = dvdt;
-      });
+      KOKKOS_LAMBDA(const Index c) { updateCell(cell_nodes, s, dt_stage, c); });
+}
+
+// The end of a stage in one sweep: each cell's update, then its geometry and
+// closure at the new node positions (both cell-local, so one kernel does them
+// while the cell's corner records are in cache); returns the time-step
+// candidates of the new state. Same results as updateCells + computeGeometry.
+inline StepLimit updateCellsAndGeometry(const Mesh& mesh, const State& state, double dt_stage,
+                                        const TimeStepControls& controls) {
+  const auto cell_nodes = mesh.cell_nodes;
+  const auto x_n = mesh.x_n;
+  const auto s = state;
+  StepLimit limit;
+  Kokkos::parallel_reduce(
+      "lagremap::cell_update::update_and_geometry", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
+      KOKKOS_LAMBDA(const Index c, StepLimit& best) {
+        updateCell(cell_nodes, s, dt_stage, c);
+        cellGeometryAndThermo(cell_nodes, x_n, s, controls, c, best);
+      },
+      StepLimitReducer(limit));
+  return limit;
 }
 
 }  // namespace lagremap

@@ -35,19 +35,16 @@ StepLimit LagrangeStep::computeGeometry() {
   return lagremap::computeGeometry(mesh_, state_, numerics_.step);
 }
 
-void LagrangeStep::advance(double dt, long step) {
+StepLimit LagrangeStep::advance(double dt, long step) {
   saveStartOfStep();
-  if (numerics_.order == 1) {
-    stage(dt);  // forward Euler
-    return;
-  }
-  stage(0.5 * dt);  // predictor: nodal velocities of t^n carry the state to t^{n+1/2}
-  const StepLimit half_step = computeGeometry();
+  if (numerics_.order == 1) return stage(dt);  // forward Euler
+  // predictor: nodal velocities of t^n carry the state to t^{n+1/2}
+  const StepLimit half_step = stage(0.5 * dt);
   if (half_step.val < 0.0) throw RunFailure(describeInvalidCell(half_step, step, "predictor"));
-  stage(dt);  // corrector: forces and velocities of t^{n+1/2} carry t^n to t^{n+1}
+  return stage(dt);  // corrector: forces and velocities of t^{n+1/2} carry t^n to t^{n+1}
 }
 
-void LagrangeStep::stage(double dt_stage) {
+StepLimit LagrangeStep::stage(double dt_stage) {
   const CornerControls corner_controls{numerics_.order, numerics_.gather};
   {
     auto scope = timers_.scope(Phase::Corners);
@@ -58,10 +55,8 @@ void LagrangeStep::stage(double dt_stage) {
     nodalSolve(mesh_, state_, corner_controls, dt_stage);
     std::swap(mesh_.x_n, state_.x_n_next);  // the mesh moves: no copy, the Views trade places
   }
-  {
-    auto scope = timers_.scope(Phase::CellUpdate);
-    updateCells(mesh_, state_, dt_stage);
-  }
+  auto scope = timers_.scope(Phase::CellUpdate);
+  return updateCellsAndGeometry(mesh_, state_, dt_stage, numerics_.step);
 }
 
 void LagrangeStep::saveStartOfStep() {

@@ -1,6 +1,8 @@
 // The Lagrangian step of DESIGN §3, as it reads in the paper:
 //   geometry -> time step -> [predictor: corners, nodal solve, cell update (dt/2)]
 //   -> geometry at t^{n+1/2} -> [corrector: corners, nodal solve, cell update (dt)]
+//   -> geometry at t^{n+1} (the next step's time-step candidates).
+// Each cell update and the geometry that follows it run as one cell sweep.
 #pragma once
 
 #include <stdexcept>
@@ -40,16 +42,18 @@ class LagrangeStep {
   // Geometry and thermodynamics of the current node positions; returns the
   // time-step candidate (negative for an invalid cell).
   StepLimit computeGeometry();
-  // One step t^n -> t^{n+1} from a state whose geometry is current. Throws
+  // One step t^n -> t^{n+1} from a state whose geometry is current; returns
+  // the time-step candidate of t^{n+1} (negative for an invalid cell). Throws
   // RunFailure if the half-step state is invalid; the start-of-step copy is kept.
-  void advance(double dt, long step);
+  StepLimit advance(double dt, long step);
   // Puts back the state of the start of the last step (the last good state).
   void restoreStartOfStep();
   // Copies the current state as the start of a step.
   void saveStartOfStep();
 
  private:
-  void stage(double dt_stage);
+  // Corner terms, nodal solve, then cell update and geometry at the new positions.
+  StepLimit stage(double dt_stage);
 
   Mesh& mesh_;
   State& state_;

@@ -294,8 +294,7 @@ RunResult runProblem(const RunOptions& options) {
     if (!result.failure.empty()) break;
 
     try {
-      lagrange.advance(dt, step + 1);
-      limit = lagrange.computeGeometry();  // state at t^{n+1}, next step's candidates
+      limit = lagrange.advance(dt, step + 1);  // and the next step's candidates
       if (limit.val < 0.0) throw RunFailure(describeInvalidCell(limit, step + 1, "end of step"));
     } catch (const RunFailure& failure) {
       lagrange.restoreStartOfStep();

@@ -67,7 +67,7 @@ TEST(KokkosTools, EveryLaunchAndViewIsLabelledAndEachPhaseIsARegion) {
   for (const char* expected :
        {"lagremap::geometry::cells", "lagremap::corners::reconstruct_and_impedance",
         "lagremap::nodal_solve::crs_gather", "lagremap::nodal_solve::atomics_sum",
-        "lagremap::cell_update::corner_forces", "lagremap::diagnostics::cell_totals"}) {
+        "lagremap::cell_update::update_and_geometry", "lagremap::diagnostics::cell_totals"}) {
     EXPECT_EQ(g_kernels.count(expected), 1u) << expected;
   }
   EXPECT_GE(labelled, 6);
