@@ -14,6 +14,13 @@ constexpr int kExitChecksFailed = 1;
 constexpr int kExitBadInput = 2;
 constexpr int kExitRunFailed = 3;
 
+// Exact text of a double for Config::set (std::to_string would round to 6 decimals).
+std::string exactText(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", value);
+  return text;
+}
+
 int badInput(const std::string& message) {
   std::fprintf(stderr, "lagremap: error: %s\n", message.c_str());
   return kExitBadInput;
@@ -111,8 +118,8 @@ int runCommandLine(int argc, char* argv[]) {
       if (!deck_mode.empty() && app.count("--mode") == 0) mode = deck_mode;
     }
     for (const auto& assignment : assignments) options.config.setAssignment(assignment);
-    if (app.count("--t-end")) options.config.set("t_end", std::to_string(t_end));
-    if (app.count("--cfl")) options.config.set("numerics.cfl", std::to_string(cfl));
+    if (app.count("--t-end")) options.config.set("t_end", exactText(t_end));
+    if (app.count("--cfl")) options.config.set("numerics.cfl", exactText(cfl));
     if (app.count("--order")) options.config.set("numerics.order", std::to_string(order));
     options.config.scaleCellCounts(scale);
     if (print_config) {
