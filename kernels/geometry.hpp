@@ -9,6 +9,7 @@
 
 #include "../src/mesh.hpp"
 #include "../src/state.hpp"
+#include "constitutive.hpp"
 #include "hex.hpp"
 #include "time_step.hpp"
 
@@ -38,9 +39,14 @@ KOKKOS_INLINE_FUNCTION void cellGeometryAndThermo(const CellNodesView& cell_node
   const Vec3 v = loadVec3(s.v_c, c);
   const double rho = s.m_c(c) / volume;
   const double e = s.E_c(c) - 0.5 * dot(v, v);
-  const ThermoState thermo = evaluateEos(s.materials(s.mat_c(c)), rho, e);
-  const double aL = thermo.sound_speed2 > 0.0 ? math::sqrt(thermo.sound_speed2) : 0.0;
-  const double aT = 0.0;  // fluids carry no transverse impedance
+  const MaterialParams& material = s.materials(s.mat_c(c));
+  const ThermoState thermo = evaluateEos(material, rho, e);
+  // Solids: aT^2 = mu / rho, aL^2 = a^2 + 4/3 aT^2 (DESIGN §3); fluids: aT = 0.
+  const double mu = shearModulus(material);
+  const double aT2 = mu > 0.0 ? transverseSoundSpeed2(mu, rho) : 0.0;
+  const double aL2 = thermo.sound_speed2 + (4.0 / 3.0) * aT2;
+  const double aL = aL2 > 0.0 ? math::sqrt(aL2) : 0.0;
+  const double aT = math::sqrt(aT2);
   s.rho_c(c) = rho;
   s.e_c(c) = e;
   s.p_c(c) = thermo.pressure;
@@ -69,7 +75,8 @@ KOKKOS_INLINE_FUNCTION void cellGeometryAndThermo(const CellNodesView& cell_node
 
   const bool finite_state =
       math::isfinite(e) && math::isfinite(thermo.pressure) && math::isfinite(rho);
-  cellStepLimit(best, controls, c, volume, length, thermo.sound_speed2, s.dvdt_c(c), finite_state,
+  cellStepLimit(best, controls, c, volume, length,
+                thermo.sound_speed2 > 0.0 ? aL2 : thermo.sound_speed2, s.dvdt_c(c), finite_state,
                 thermo.valid);
 }
 

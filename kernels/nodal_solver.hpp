@@ -13,6 +13,7 @@
 
 #include "../src/mesh.hpp"
 #include "../src/state.hpp"
+#include "constitutive.hpp"
 #include "geometry.hpp"
 #include "hex.hpp"
 #include "reconstruction.hpp"
@@ -126,11 +127,14 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
           }
         }
 
-        // --- B_cp = M_cp V_c(p) - sigma_c(p) A_cp with sigma = -p I
+        // --- B_cp = M_cp V_c(p) - sigma_c(p) A_cp with sigma = -p I + S; the
+        // deviator S of a solid is taken constant over the cell.
+        const SymMat3 deviator = loadSym(s.S_c, c);
         for (int p = 0; p < 8; ++p) {
           const Index corner = 8 * c + p;
           const SymMat3 impedance = loadSym(s.M_cp, corner);
-          const Vec3 rhs = impedance * v_node[p] + p_node[p] * loadVec3(s.A_cp, corner);
+          const Vec3 corner_vec = loadVec3(s.A_cp, corner);
+          const Vec3 rhs = impedance * v_node[p] + p_node[p] * corner_vec - deviator * corner_vec;
           storeVec3(s.B_cp, corner, rhs);
           if (atomics) {
             const Index node = cell_nodes(c, p);
@@ -253,6 +257,22 @@ KOKKOS_INLINE_FUNCTION void updateCell(const CellNodesView& cell_nodes, const St
   storeVec3(s.v_c, c, loadVec3(s.v_c0, c) + dt_over_m * force);
   s.E_c(c) = s.E_c0(c) + dt_over_m * power;
   s.dvdt_c(c) = dvdt;
+
+  // Hypo-elastic solids (DESIGN §4): objective update of S with the discrete
+  // velocity gradient L = (1/v) sum_p V_p (x) A_cp of this stage, then radial
+  // return. The plastic work needs no extra term: the total energy update
+  // above already holds the work of sigma = -p I + S, so e = E - |V|^2/2
+  // receives it.
+  const MaterialParams& material = s.materials(s.mat_c(c));
+  if (material.strength == StrengthKind::HypoElastic) {
+    Mat3 gradient = zeroMat();
+    for (int p = 0; p < 8; ++p) {
+      addOuter(gradient, 1.0 / s.vol_c(c), loadVec3(s.v_n, cell_nodes(c, p)),
+               loadVec3(s.A_cp, 8 * c + p));
+    }
+    const SymMat3 trial = jaumannUpdate(loadSym(s.S_c0, c), gradient, material.mu, dt_stage);
+    storeSym(s.S_c, c, radialReturn(trial, material.yield_stress).S);
+  }
 }
 
 inline void updateCells(const Mesh& mesh, const State& state, double dt_stage) {

@@ -5,9 +5,10 @@ namespace lagremap {
 
 extern const Problem kSodProblem;
 extern const Problem kSedovProblem;
+extern const Problem kWilkinsProblem;
 
 const std::vector<Problem>& problemRegistry() {
-  static const std::vector<Problem> problems = {kSodProblem, kSedovProblem};
+  static const std::vector<Problem> problems = {kSodProblem, kSedovProblem, kWilkinsProblem};
   return problems;
 }
 

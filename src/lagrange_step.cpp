@@ -63,12 +63,14 @@ void LagrangeStep::saveStartOfStep() {
   Kokkos::deep_copy(state_.x_n0, mesh_.x_n);
   Kokkos::deep_copy(state_.v_c0, state_.v_c);
   Kokkos::deep_copy(state_.E_c0, state_.E_c);
+  Kokkos::deep_copy(state_.S_c0, state_.S_c);
 }
 
 void LagrangeStep::restoreStartOfStep() {
   Kokkos::deep_copy(mesh_.x_n, state_.x_n0);
   Kokkos::deep_copy(state_.v_c, state_.v_c0);
   Kokkos::deep_copy(state_.E_c, state_.E_c0);
+  Kokkos::deep_copy(state_.S_c, state_.S_c0);
   computeGeometry();
 }
 

@@ -39,6 +39,7 @@ struct FinalFields {
   HostMesh mesh;
   RealView::HostMirror rho, p, e, vol;
   Vec3View::HostMirror v, x_c;
+  Sym6View::HostMirror S;  // deviatoric stress
 };
 
 struct Problem {

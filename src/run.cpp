@@ -57,6 +57,7 @@ FinalFields copyFields(const ProblemSetup& setup, const State& state, double tim
   fields.vol = Kokkos::create_mirror_view_and_copy(HostSpace(), state.vol_c);
   fields.v = Kokkos::create_mirror_view_and_copy(HostSpace(), state.v_c);
   fields.x_c = Kokkos::create_mirror_view_and_copy(HostSpace(), state.x_c);
+  fields.S = Kokkos::create_mirror_view_and_copy(HostSpace(), state.S_c);
   return fields;
 }
 
@@ -64,12 +65,14 @@ void writeSnapshot(io::SnapshotSeries& series, const FinalFields& fields) {
   const Index n_cells = Index(fields.rho.extent(0));
   const Index n_nodes = Index(fields.mesh.x_n.extent(0));
   std::vector<double> xyz(3 * std::size_t(n_nodes)), velocity(3 * std::size_t(n_cells));
+  std::vector<double> deviator(6 * std::size_t(n_cells));
   std::vector<std::int64_t> connectivity(8 * std::size_t(n_cells));
   for (Index n = 0; n < n_nodes; ++n)
     for (int d = 0; d < 3; ++d) xyz[3 * n + d] = fields.mesh.x_n(n, d);
   for (Index c = 0; c < n_cells; ++c) {
     for (int p = 0; p < 8; ++p) connectivity[8 * std::size_t(c) + p] = fields.mesh.cell_nodes(c, p);
     for (int d = 0; d < 3; ++d) velocity[3 * c + d] = fields.v(c, d);
+    for (int k = 0; k < 6; ++k) deviator[6 * std::size_t(c) + k] = fields.S(c, k);
   }
   const io::SnapshotMesh mesh{n_nodes, xyz.data(), n_cells, connectivity.data()};
   series.write(fields.time, mesh,
@@ -77,7 +80,8 @@ void writeSnapshot(io::SnapshotSeries& series, const FinalFields& fields) {
                 {"pressure", fields.p.data(), 1},
                 {"internal_energy", fields.e.data(), 1},
                 {"volume", fields.vol.data(), 1},
-                {"velocity", velocity.data(), 3}});
+                {"velocity", velocity.data(), 3},
+                {"deviatoric_stress", deviator.data(), 6}});
 }
 
 // A mesh that cannot fit in memory is bad input, said before anything is
