@@ -81,11 +81,11 @@ TEST(CommandLine, ListHelpAndPrintConfig) {
   const auto help = runLagremap("--help");
   EXPECT_EQ(help.exit_code, 0);
   EXPECT_NE(help.output.find("--print-config"), std::string::npos);
-  const auto config =
-      runLagremap("--problem sod --scale 2 --set left.p=3 --t-end 2.5e-7 --cfl 0.25 --print-config");
+  const auto config = runLagremap(
+      "--problem sod --scale 2 --set left.p=3 --t-end 2.5e-7 --cfl 0.25 --print-config");
   EXPECT_EQ(config.exit_code, 0);
-  for (const char* line : {"mesh.nx=400", "left.p=3", "bc.xmin=wall",
-                           "gas.gamma=1.4", "t_end=2.5e-07", "numerics.cfl=0.25", "[Pa]"}) {
+  for (const char* line : {"mesh.nx=400", "left.p=3", "bc.xmin=wall", "gas.gamma=1.4",
+                           "t_end=2.5e-07", "numerics.cfl=0.25", "[Pa]"}) {
     EXPECT_NE(config.output.find(line), std::string::npos) << line << "\n" << config.output;
   }
 }
