@@ -29,67 +29,18 @@ struct CornerControls {
 
 namespace detail {
 
-// Mirror image across a wall face: offset to the ghost centroid, the jump of
-// the velocity (normal component reversed) and the face's unit normal; the
-// pressure is continuous and the deviator is reflected (R S R, R = I - 2 n n).
+// Mirror image across a wall face: offset to the ghost centroid and the jump of
+// the velocity (normal component reversed); the pressure is continuous.
 KOKKOS_INLINE_FUNCTION void mirrorAcrossFace(const Vec3 x[8], int f, const Vec3& centroid,
                                              const Vec3& velocity, Vec3& offset,
-                                             Vec3& velocity_jump, Vec3& normal) {
+                                             Vec3& velocity_jump) {
   Vec3 q[4], w[4];
   hex::faceNodes(x, f, q);
   const Vec3 area = hex::faceCornerVectors(q, w);
-  normal = (1.0 / norm(area)) * area;
+  const Vec3 normal = (1.0 / norm(area)) * area;
   const Vec3 face_point = 0.25 * (q[0] + q[1] + q[2] + q[3]);
   offset = (2.0 * dot(face_point - centroid, normal)) * normal;
   velocity_jump = (-2.0 * dot(velocity, normal)) * normal;
-}
-
-// Limited linear reconstruction of a solid's deviator S at the cell's nodes,
-// component by component (Barth-Jespersen), over the same face stencil as V
-// and p: dx[f] the offsets, used[f] whether face f contributes, mirror_normal[f]
-// the wall normal of a mirrored face (zero for a real neighbour).
-KOKKOS_INLINE_FUNCTION void reconstructDeviator(const State& s, const CellFacesView& neighbors,
-                                                Index c, const SymMat3& inv, const Vec3 dx[6],
-                                                const bool used[6], const Vec3 mirror_normal[6],
-                                                const Vec3 x[8], const Vec3& centroid,
-                                                SymMat3 S_node[8]) {
-  const SymMat3 S_cell = loadSym(s.S_c, c);
-  const double center[6] = {S_cell.xx, S_cell.yy, S_cell.zz, S_cell.xy, S_cell.yz, S_cell.xz};
-  Vec3 rhs[6];
-  Bounds bounds[6] = {Bounds(center[0]), Bounds(center[1]), Bounds(center[2]),
-                      Bounds(center[3]), Bounds(center[4]), Bounds(center[5])};
-  for (int k = 0; k < 6; ++k) rhs[k] = Vec3{0, 0, 0};
-  for (int f = 0; f < 6; ++f) {
-    if (!used[f]) continue;
-    SymMat3 neighbour;
-    const Index nb = neighbors(c, f);
-    if (nb >= 0) {
-      neighbour = loadSym(s.S_c, nb);
-    } else {
-      const Vec3& n = mirror_normal[f];
-      Mat3 reflection = identityMat();
-      addOuter(reflection, -2.0, n, n);
-      neighbour = pushForward(reflection, S_cell);  // R S R^T
-    }
-    const double value[6] = {neighbour.xx, neighbour.yy, neighbour.zz,
-                             neighbour.xy, neighbour.yz, neighbour.xz};
-    for (int k = 0; k < 6; ++k) {
-      rhs[k] += (value[k] - center[k]) * dx[f];
-      bounds[k].include(value[k]);
-    }
-  }
-  double node_value[8][6];
-  for (int k = 0; k < 6; ++k) {
-    const Vec3 gradient = inv * rhs[k];
-    VertexExcursion excursion;
-    for (int p = 0; p < 8; ++p) excursion.include(dot(gradient, x[p] - centroid));
-    const double phi = cellLimiter(excursion, center[k], bounds[k], 1.0);
-    for (int p = 0; p < 8; ++p) node_value[p][k] = center[k] + phi * dot(gradient, x[p] - centroid);
-  }
-  for (int p = 0; p < 8; ++p) {
-    S_node[p] = {node_value[p][0], node_value[p][1], node_value[p][2],
-                 node_value[p][3], node_value[p][4], node_value[p][5]};
-  }
 }
 
 }  // namespace detail
@@ -114,9 +65,6 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
         const Vec3 v_cell = loadVec3(s.v_c, c);
         const double p_cell = s.p_c(c);
         const bool solid = s.materials(s.mat_c(c)).strength != StrengthKind::None;
-        SymMat3 S_node[8];  // deviator at the nodes (constant unless reconstructed)
-        const SymMat3 S_cell = loadSym(s.S_c, c);
-        for (int p = 0; p < 8; ++p) S_node[p] = S_cell;
 
         // --- reconstruction of V and p at the cell's nodes (DESIGN §3, second order)
         Vec3 v_node[8];
@@ -128,25 +76,19 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
           LeastSquares lsq;
           Vec3 rhs_vx{0, 0, 0}, rhs_vy{0, 0, 0}, rhs_vz{0, 0, 0}, rhs_p{0, 0, 0};
           Bounds vx(v_cell.x), vy(v_cell.y), vz(v_cell.z), pb(p_cell);
-          Vec3 dx_face[6], mirror_normal[6];
-          bool used[6];
           for (int f = 0; f < 6; ++f) {
             const Index nb = neighbors(c, f);
             Vec3 dx, dv;
             double dp = 0.0;
-            used[f] = true;
-            mirror_normal[f] = Vec3{0, 0, 0};
             if (nb >= 0) {
               dx = loadVec3(s.x_c, nb) - centroid;
               dv = loadVec3(s.v_c, nb) - v_cell;
               dp = s.p_c(nb) - p_cell;
             } else if (side_kind(face_side(c, f)) == int(BoundaryKind::Wall)) {
-              detail::mirrorAcrossFace(x, f, centroid, v_cell, dx, dv, mirror_normal[f]);
+              detail::mirrorAcrossFace(x, f, centroid, v_cell, dx, dv);
             } else {
-              used[f] = false;
               continue;
             }
-            dx_face[f] = dx;
             lsq.addOffset(dx);
             rhs_vx += dv.x * dx;
             rhs_vy += dv.y * dx;
@@ -172,17 +114,16 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
           const double phi_vx = cellLimiter(ex_vx, v_cell.x, vx, 1.0);
           const double phi_vy = cellLimiter(ex_vy, v_cell.y, vy, 1.0);
           const double phi_vz = cellLimiter(ex_vz, v_cell.z, vz, 1.0);
-          const double phi_p = cellLimiter(ex_p, p_cell, pb, 1.0);
+          // A solid keeps its stress constant over the cell (README, Numerical
+          // method): a limited stress slope across a strong plastic front pulls
+          // the stress at the node ahead of it down to the unshocked value and
+          // the elastic precursor is never driven.
+          const double phi_p = solid ? 0.0 : cellLimiter(ex_p, p_cell, pb, 1.0);
           for (int p = 0; p < 8; ++p) {
             const Vec3 d = x[p] - centroid;
             v_node[p] = v_cell + Vec3{phi_vx * dot(grad_vx, d), phi_vy * dot(grad_vy, d),
                                       phi_vz * dot(grad_vz, d)};
             p_node[p] = p_cell + phi_p * dot(grad_p, d);
-          }
-          // Solids: sigma = -p I + S is reconstructed whole, S like p (DESIGN §3).
-          if (solid) {
-            detail::reconstructDeviator(s, neighbors, c, inv, dx_face, used, mirror_normal, x,
-                                        centroid, S_node);
           }
         } else {
           for (int p = 0; p < 8; ++p) {
@@ -191,12 +132,14 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
           }
         }
 
-        // --- B_cp = M_cp V_c(p) - sigma_c(p) A_cp with sigma = -p I + S
+        // --- B_cp = M_cp V_c(p) - sigma_c(p) A_cp with sigma = -p I + S (the
+        // deviator, like the whole stress of a solid, constant over the cell)
+        const SymMat3 deviator = loadSym(s.S_c, c);
         for (int p = 0; p < 8; ++p) {
           const Index corner = 8 * c + p;
           const SymMat3 impedance = loadSym(s.M_cp, corner);
           const Vec3 corner_vec = loadVec3(s.A_cp, corner);
-          const Vec3 rhs = impedance * v_node[p] + p_node[p] * corner_vec - S_node[p] * corner_vec;
+          const Vec3 rhs = impedance * v_node[p] + p_node[p] * corner_vec - deviator * corner_vec;
           storeVec3(s.B_cp, corner, rhs);
           if (atomics) {
             const Index node = cell_nodes(c, p);

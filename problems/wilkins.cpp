@@ -131,14 +131,22 @@ std::vector<Check> finishWilkins(const Config& config, const FinalFields& fields
 
   const double tol = config.real("check.relative_tolerance");
   const double n = std::max(count, 1);
-  return {{"precursor_velocity", u_precursor, u_e, 0.1 * u_e,
-           "median u on the elastic precursor plateau (exact 35.2 m/s; default flyer speed)"},
-          {"plastic_velocity", sum_u / n, v_half, tol * v_half,
-           "mean u behind the right-going shock (symmetric impact: half the flyer speed)"},
-          {"plastic_sigma_xx", sum_sigma / n, -6.637e9, tol * 6.637e9,
-           "mean sigma_xx behind the shock (exact two-wave solution, PROBLEMS.md)"},
-          {"plastic_density", sum_rho / n, 2985.6, tol * 2985.6,
-           "mean density behind the shock (exact two-wave solution)"}};
+  std::vector<Check> checks;
+  // The plateau is (cL - U_plastic) t wide: 3 cells at the paper's 200, so its
+  // level is measured only once it spans at least 8 cells (--scale 3 and up).
+  if (plateau.size() >= 8) {
+    checks.push_back({"precursor_velocity", u_precursor, u_e, 0.05 * u_e,
+                      "median u on the elastic precursor plateau (exact 35.2 m/s)"});
+  }
+  std::vector<Check> plastic = {
+      {"plastic_velocity", sum_u / n, v_half, tol * v_half,
+       "mean u behind the right-going shock (symmetric impact: half the flyer speed)"},
+      {"plastic_sigma_xx", sum_sigma / n, -6.637e9, tol * 6.637e9,
+       "mean sigma_xx behind the shock (exact two-wave solution, PROBLEMS.md)"},
+      {"plastic_density", sum_rho / n, 2985.6, tol * 2985.6,
+       "mean density behind the shock (exact two-wave solution)"}};
+  checks.insert(checks.end(), plastic.begin(), plastic.end());
+  return checks;
 }
 
 }  // namespace

@@ -27,6 +27,20 @@ TEST(Validation, DefaultProblemsPassTheirChecks) {
   }
 }
 
+// The flyer plate at 2000 cells, where the elastic precursor is resolved:
+// every check of the exact two-wave solution, precursor included.
+TEST(Validation, WilkinsTwoWaveStructure) {
+  const RunResult result = runProblem(testing::problemOptions("wilkins", {}, 10.0));
+  ASSERT_FALSE(result.failed) << result.failure;
+  ASSERT_EQ(result.checks.size(), 4u);  // precursor + plastic velocity, stress, density
+  for (const auto& check : result.checks) {
+    std::printf("wilkins 2000 cells: %-20s %.6g (reference %.6g, tolerance %.3g)\n",
+                check.name.c_str(), check.value, check.reference, check.tolerance);
+    EXPECT_TRUE(check.pass()) << check.name;
+  }
+  EXPECT_LT(result.drift_energy, 1e-12);
+}
+
 TEST(Validation, SodConvergenceOverADecade) {
   for (int order : {1, 2}) {
     double previous = 0.0;
