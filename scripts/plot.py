@@ -65,6 +65,7 @@ LABELS = {
     "p": "pressure p [Pa]",
     "e": "specific internal energy e [J/kg]",
     "speed": "speed |u| [m/s]",
+    "sigma_xx": "stress σ_xx [Pa]",
 }
 
 # Fixed colours per time-step limiter, so the same reason has the same colour
@@ -272,6 +273,34 @@ def plot_sod_profiles(run: Run, out_path: str) -> str:
     if l1:
         title += "\n" + l1
     fig.suptitle(title)
+    fig.tight_layout()
+    return save(fig, out_path)
+
+
+def plot_wilkins_profiles(run: Run, out_path: str) -> str:
+    """Flyer plate: density, velocity and sigma_xx along x (paper Fig. 3).
+
+    Dashed lines mark the exact plastic state and elastic precursor levels of
+    the default impact, so the two-wave structure (precursor plateau ahead of
+    the plastic shock) can be judged by eye.
+    """
+    name = "wilkins_profile.csv"
+    fields = ["rho", "u", "sigma_xx"]
+    t = run.table(name, ["x"] + fields)
+    order = np.argsort(t["x"], kind="stable")
+    x = t["x"][order]
+    exact = {"rho": (2985.6, 2800.2), "u": (400.0, 35.2), "sigma_xx": (-6.637e9, -0.636e9)}
+    fig, axes = plt.subplots(3, 1, figsize=(9, 9), sharex=True)
+    for ax, field in zip(axes, fields):
+        ax.plot(x, t[field][order], "-o", ms=2, lw=0.8, color="tab:blue", label="lagrange")
+        plastic, precursor = exact[field]
+        ax.axhline(plastic, ls="--", lw=0.8, color="black", label="exact plastic state")
+        ax.axhline(precursor, ls=":", lw=0.8, color="tab:red", label="exact elastic precursor")
+        ax.set_ylabel(LABELS[field])
+        ax.grid(alpha=0.3)
+    axes[0].legend(loc="best", fontsize="small")
+    axes[-1].set_xlabel(LABELS["x"])
+    fig.suptitle(run_title(run, "Wilkins flyer plate"))
     fig.tight_layout()
     return save(fig, out_path)
 
@@ -592,6 +621,7 @@ class Plot:
 # Plots that only make sense for one problem, keyed by summary["problem"].
 PROBLEM_PLOTS: Dict[str, List[Plot]] = {
     "sod": [Plot("sod_profiles.png", "sod_profile.csv", plot_sod_profiles)],
+    "wilkins": [Plot("wilkins_profiles.png", "wilkins_profile.csv", plot_wilkins_profiles)],
 }
 
 # Plots drawn for any problem, as long as the run wrote their input: radial
