@@ -101,6 +101,20 @@ TEST(Lagrange, MieGruneisenLimitingCompressionIsAClearFailure) {
   }
 }
 
+// A solid problem (Mie-Gruneisen, hypo-elastic, plastic shock, free surface):
+// the plastic state of the exact two-wave solution, and mass, momentum and
+// total energy to round-off (plastic work goes to internal energy, none lost).
+TEST(Lagrange, FlyerPlatePlasticStateAndConservation) {
+  const RunResult result = runProblem(problemOptions("wilkins"));
+  ASSERT_FALSE(result.failed) << result.failure;
+  for (const auto& check : result.checks) EXPECT_TRUE(check.pass()) << check.name;
+  EXPECT_NEAR(checkValue(result, "plastic_velocity"), 400.0, 1.0);
+  EXPECT_EQ(result.drift_mass, 0.0);
+  EXPECT_LT(result.drift_momentum, 1e-12);
+  EXPECT_LT(result.drift_energy, 1e-12);
+  EXPECT_LT(result.max_transverse_velocity, 1e-12);
+}
+
 // Walls on three sides, free surfaces on the other three: mass exactly, and
 // momentum and total energy to round-off once the wall impulse and work (zero
 // for slip walls) are accounted for.
