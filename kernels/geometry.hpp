@@ -47,6 +47,10 @@ KOKKOS_INLINE_FUNCTION void cellGeometryAndThermo(const CellNodesView& cell_node
   const double aL2 = thermo.sound_speed2 + (4.0 / 3.0) * aT2;
   const double aL = aL2 > 0.0 ? math::sqrt(aL2) : 0.0;
   const double aT = math::sqrt(aT2);
+  if (material.strength == StrengthKind::NeoHookean) {
+    // Hyper-elastic deviator from B (DESIGN §4), J = rho0 / rho.
+    storeSym(s.S_c, c, neoHookeanDeviator(loadSym(s.B_c, c), material.rho0 / rho, mu));
+  }
   s.rho_c(c) = rho;
   s.e_c(c) = e;
   s.p_c(c) = thermo.pressure;

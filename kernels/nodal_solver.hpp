@@ -246,8 +246,8 @@ inline void nodalSolve(const Mesh& mesh, const State& state, const CornerControl
 // (DESIGN §3): F_cp = M_cp V_p - B_cp,
 //   m_c dV_c/dt = sum_p F_cp,  m_c dE_c/dt = sum_p F_cp . V_p,
 // and dv_c/dt = sum_p A_cp . V_p for the next time step.
-KOKKOS_INLINE_FUNCTION void updateCell(const CellNodesView& cell_nodes, const State& s,
-                                       double dt_stage, Index c) {
+KOKKOS_INLINE_FUNCTION void updateCell(const CellNodesView& cell_nodes, const Vec3View& x_n,
+                                       const State& s, double dt_stage, Index c) {
   Vec3 force{0, 0, 0};
   double power = 0.0, dvdt = 0.0;
   for (int p = 0; p < 8; ++p) {
@@ -277,15 +277,33 @@ KOKKOS_INLINE_FUNCTION void updateCell(const CellNodesView& cell_nodes, const St
     }
     const SymMat3 trial = jaumannUpdate(loadSym(s.S_c0, c), gradient, material.mu, dt_stage);
     storeSym(s.S_c, c, radialReturn(trial, material.yield_stress).S);
+  } else if (material.strength == StrengthKind::NeoHookean) {
+    // Incremental deformation gradient over the stage, exact for affine motion
+    // (DESIGN §4): F = (1/v^n) sum_p x_p^new (x) A_cp^n, with the geometry of the
+    // start of the step recomputed from x_n0; then B = F B^n F^T (SPD kept).
+    Vec3 x_start[8], corner_start[8];
+    for (int p = 0; p < 8; ++p) x_start[p] = loadVec3(s.x_n0, cell_nodes(c, p));
+    hex::cornerVectors(x_start, corner_start);
+    double volume_start = 0.0;  // Euler's theorem for the cubic volume
+    for (int p = 0; p < 8; ++p) volume_start += dot(x_start[p] - x_start[0], corner_start[p]);
+    volume_start /= 3.0;
+    Mat3 deformation = zeroMat();
+    for (int p = 0; p < 8; ++p) {
+      // relative to node 0 (sum_p A_cp = 0), to keep round-off small
+      addOuter(deformation, 1.0 / volume_start,
+               loadVec3(x_n, cell_nodes(c, p)) - loadVec3(x_n, cell_nodes(c, 0)), corner_start[p]);
+    }
+    storeSym(s.B_c, c, pushForward(deformation, loadSym(s.B_c0, c)));
   }
 }
 
 inline void updateCells(const Mesh& mesh, const State& state, double dt_stage) {
   const auto cell_nodes = mesh.cell_nodes;
+  const auto x_n = mesh.x_n;
   const auto s = state;
   Kokkos::parallel_for(
       "lagremap::cell_update::corner_forces", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
-      KOKKOS_LAMBDA(const Index c) { updateCell(cell_nodes, s, dt_stage, c); });
+      KOKKOS_LAMBDA(const Index c) { updateCell(cell_nodes, x_n, s, dt_stage, c); });
 }
 
 // The end of a stage in one sweep: each cell's update, then its geometry and
@@ -301,7 +319,7 @@ inline StepLimit updateCellsAndGeometry(const Mesh& mesh, const State& state, do
   Kokkos::parallel_reduce(
       "lagremap::cell_update::update_and_geometry", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
       KOKKOS_LAMBDA(const Index c, StepLimit& best) {
-        updateCell(cell_nodes, s, dt_stage, c);
+        updateCell(cell_nodes, x_n, s, dt_stage, c);
         cellGeometryAndThermo(cell_nodes, x_n, s, controls, c, best);
       },
       StepLimitReducer(limit));

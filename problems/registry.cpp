@@ -6,9 +6,11 @@ namespace lagremap {
 extern const Problem kSodProblem;
 extern const Problem kSedovProblem;
 extern const Problem kWilkinsProblem;
+extern const Problem kPileProblem;
 
 const std::vector<Problem>& problemRegistry() {
-  static const std::vector<Problem> problems = {kSodProblem, kSedovProblem, kWilkinsProblem};
+  static const std::vector<Problem> problems = {kSodProblem, kSedovProblem, kWilkinsProblem,
+                                                kPileProblem};
   return problems;
 }
 
@@ -36,6 +38,16 @@ void declareBoundaryKeys(Config& config, const std::array<const char*, kNumSides
     config.addChoice(std::string("bc.") + sideName(side), defaults[side],
                      {"free", "wall", "symmetry", "fixed", "traction"},
                      std::string("boundary condition on the ") + sideName(side) + " side");
+  }
+}
+
+void declareTractionKeys(Config& config, int side, const SymMat3& stress) {
+  const std::string prefix = std::string("bc.") + sideName(side) + ".sigma_";
+  const double values[6] = {stress.xx, stress.yy, stress.zz, stress.xy, stress.yz, stress.xz};
+  const char* names[6] = {"xx", "yy", "zz", "xy", "yz", "xz"};
+  for (int k = 0; k < 6; ++k) {
+    config.addReal(prefix + names[k], values[k], "Pa",
+                   std::string("imposed Cauchy stress (tension > 0) on ") + sideName(side));
   }
 }
 

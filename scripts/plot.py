@@ -305,6 +305,27 @@ def plot_wilkins_profiles(run: Run, out_path: str) -> str:
     return save(fig, out_path)
 
 
+def plot_pile_wall_stress(run: Run, out_path: str) -> str:
+    """Pile driving: wall sigma_xx against time with the exact square wave.
+
+    The exact linear-elastic answer is 0 / twice the imposed stress / 0 on
+    [0, L/c] / [L/c, 3L/c] / [3L/c, 4L/c]; overshoot at the fronts and the
+    arrival time are what to look at.
+    """
+    name = "pile_wall_stress.csv"
+    t = run.table(name, ["t", "sigma_xx", "exact"])
+    fig, ax = plt.subplots(figsize=(9, 4.8))
+    ax.plot(t["t"], t["exact"], "-", color="black", lw=1.2, label="exact (linear elastic)")
+    ax.plot(t["t"], t["sigma_xx"], "-", color="tab:blue", lw=1.0, label="lagrange")
+    ax.set_xlabel(LABELS["t"])
+    ax.set_ylabel("wall stress σ_xx [Pa]")
+    ax.grid(alpha=0.3)
+    ax.legend(loc="best", fontsize="small")
+    ax.set_title(run_title(run, "Pile driving: stress on the wall"))
+    fig.tight_layout()
+    return save(fig, out_path)
+
+
 # --------------------------------------------------------------------------
 # Generic plots (drawn for any problem whose run wrote the input file)
 # --------------------------------------------------------------------------
@@ -622,6 +643,7 @@ class Plot:
 PROBLEM_PLOTS: Dict[str, List[Plot]] = {
     "sod": [Plot("sod_profiles.png", "sod_profile.csv", plot_sod_profiles)],
     "wilkins": [Plot("wilkins_profiles.png", "wilkins_profile.csv", plot_wilkins_profiles)],
+    "pile": [Plot("pile_wall_stress.png", "pile_wall_stress.csv", plot_pile_wall_stress)],
 }
 
 # Plots drawn for any problem, as long as the run wrote their input: radial

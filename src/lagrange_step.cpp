@@ -64,6 +64,7 @@ void LagrangeStep::saveStartOfStep() {
   Kokkos::deep_copy(state_.v_c0, state_.v_c);
   Kokkos::deep_copy(state_.E_c0, state_.E_c);
   Kokkos::deep_copy(state_.S_c0, state_.S_c);
+  Kokkos::deep_copy(state_.B_c0, state_.B_c);
 }
 
 void LagrangeStep::restoreStartOfStep() {
@@ -71,6 +72,7 @@ void LagrangeStep::restoreStartOfStep() {
   Kokkos::deep_copy(state_.v_c, state_.v_c0);
   Kokkos::deep_copy(state_.E_c, state_.E_c0);
   Kokkos::deep_copy(state_.S_c, state_.S_c0);
+  Kokkos::deep_copy(state_.B_c, state_.B_c0);
   computeGeometry();
 }
 

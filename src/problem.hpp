@@ -40,6 +40,8 @@ struct FinalFields {
   RealView::HostMirror rho, p, e, vol;
   Vec3View::HostMirror v, x_c;
   Sym6View::HostMirror S;  // deviatoric stress
+  // The problem's probe after every step: (t, value), first entry at t = 0.
+  std::vector<std::pair<double, double>> probe;
 };
 
 struct Problem {
@@ -52,6 +54,10 @@ struct Problem {
   // Writes the problem's CSVs into out_dir and returns its checks.
   std::vector<Check> (*finish)(const Config& config, const FinalFields& fields,
                                const std::string& out_dir);
+  // Optional: a number measured after every step (e.g. a wall stress), kept
+  // in FinalFields::probe and written to probe.csv with this column name.
+  double (*probe)(const Mesh& mesh, const State& state) = nullptr;
+  const char* probe_name = nullptr;
 };
 
 const std::vector<Problem>& problemRegistry();
@@ -61,6 +67,8 @@ const Problem& findProblem(const std::string& name);
 // Helpers shared by the generators.
 void declareMeshKeys(Config& config, int nx, int ny, int nz);
 void declareBoundaryKeys(Config& config, const std::array<const char*, kNumSides>& defaults);
+// bc.<side>.sigma_xx ... sigma_xz: the stress imposed on a traction side.
+void declareTractionKeys(Config& config, int side, const SymMat3& stress);
 SideBoundaries readBoundaries(const Config& config);
 // Volumes and centroids of the cells on the host (same formulas as the kernels).
 void hostCellShapes(const HostMesh& mesh, std::vector<double>& volume, std::vector<Vec3>& centroid);

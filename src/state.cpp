@@ -17,6 +17,8 @@ State allocateState(const Mesh& mesh, bool with_atomics_gather) {
   s.mat_c = DeviceView<int*>("lagremap::state::mat_c", nc);
   s.S_c = Sym6View("lagremap::state::S_c", nc);
   s.S_c0 = Sym6View("lagremap::state::S_c0", nc);
+  s.B_c = Sym6View("lagremap::state::B_c", nc);
+  s.B_c0 = Sym6View("lagremap::state::B_c0", nc);
   s.vol_c = cells("vol_c");
   s.rho_c = cells("rho_c");
   s.e_c = cells("e_c");

@@ -16,7 +16,8 @@ struct State {
   Vec3View v_c;
   RealView E_c;
   DeviceView<int*> mat_c;  // material of the cell
-  Sym6View S_c;            // deviatoric Cauchy stress (hypo-elastic solids; 0 in fluids)
+  Sym6View S_c;            // deviatoric Cauchy stress (solids; 0 in fluids)
+  Sym6View B_c;            // left Cauchy-Green tensor (Neo-Hookean solids; I elsewhere)
   MaterialView materials;  // material table
 
   // Derived at every stage from the node positions (computeGeometry).
@@ -27,7 +28,7 @@ struct State {
   // Start of step t^n: base of the predictor-corrector and the last good state.
   Vec3View x_n0, v_c0;
   RealView E_c0;
-  Sym6View S_c0;
+  Sym6View S_c0, B_c0;
 
   // Corner arrays, corner id = 8 c + local node.
   Vec3View A_cp;  // corner vector sum_f s_pf n_pf = d v_c / d x_p

@@ -115,6 +115,23 @@ TEST(Lagrange, FlyerPlatePlasticStateAndConservation) {
   EXPECT_LT(result.max_transverse_velocity, 1e-12);
 }
 
+// Neo-Hookean bar driven by an end traction: the wall stress follows the exact
+// square wave (0 / -1e8 / 0), no lateral motion for nu = 0, and the energy the
+// traction puts in is all there (drift with the boundary work subtracted).
+TEST(Lagrange, PileWallStressSquareWaveAndEnergyBalance) {
+  const RunResult result = runProblem(problemOptions("pile"));
+  ASSERT_FALSE(result.failed) << result.failure;
+  ASSERT_EQ(result.checks.size(), 5u);
+  for (const auto& check : result.checks) {
+    EXPECT_TRUE(check.pass()) << check.name << " = " << check.value;
+  }
+  EXPECT_NEAR(checkValue(result, "wall_stress_plateau"), -1e8, 1e6);
+  EXPECT_NEAR(checkValue(result, "arrival_time"), 2e-3, 5e-5);
+  EXPECT_EQ(result.drift_mass, 0.0);
+  EXPECT_LT(result.drift_momentum, 1e-12);
+  EXPECT_LT(result.drift_energy, 1e-12);
+}
+
 // Walls on three sides, free surfaces on the other three: mass exactly, and
 // momentum and total energy to round-off once the wall impulse and work (zero
 // for slip walls) are accounted for.

@@ -1,0 +1,135 @@
+// `pile` — pile driving of a hyper-elastic steel bar, PROBLEMS.md §3: a real
+// 3D mesh 100 x 3 x 3 of [0,10] x [-0.5,0.5]^2, rigid wall at x = 0, imposed
+// sigma_xx = -5e7 Pa at x = 10, free lateral faces. Linear elastic limit
+// (nu = 0, c = sqrt(E/rho0) = 5000 m/s, L/c = 2 ms): the wall stress is 0 until
+// 2 ms, -1e8 (the doubled reflection) until 6 ms, then 0 again; no lateral motion.
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
+#include "../src/materials.hpp"
+#include "../src/problem.hpp"
+
+namespace lagremap {
+namespace {
+
+void declarePile(Config& config) {
+  config.addReal("t_end", 8e-3, "s", "final time");
+  const MaterialParams steel = materialPreset("Steel-hyper");
+  config.addReal("steel.rho0", steel.rho0, "kg/m^3", "reference density");
+  config.addReal("steel.young", steel.young, "Pa", "Young's modulus E (Neo-Hookean)");
+  config.addReal("steel.poisson", steel.poisson, "-", "Poisson's ratio nu (Neo-Hookean)");
+  config.addReal("geometry.length", 10.0, "m", "bar length along x");
+  config.addReal("geometry.width", 1.0, "m", "bar width in y and z");
+  declareMeshKeys(config, 100, 3, 3);
+  declareBoundaryKeys(config, {"wall", "traction", "free", "free", "free", "free"});
+  declareTractionKeys(config, 1, SymMat3{-5e7, 0, 0, 0, 0, 0});
+  config.addReal("check.plateau_tolerance", 0.05, "-",
+                 "relative tolerance on the wall-stress plateau and the quiet phases");
+  config.addReal("check.arrival_tolerance", 1e-4, "s", "tolerance on the arrival time 2 ms");
+}
+
+ProblemSetup setupPile(const Config& config) {
+  MaterialParams steel = materialPreset("Steel-hyper");
+  steel.rho0 = config.real("steel.rho0");
+  steel.young = config.real("steel.young");
+  steel.poisson = config.real("steel.poisson");
+  if (!(steel.rho0 > 0 && steel.young > 0 && steel.poisson >= 0 && steel.poisson < 0.5)) {
+    throw ConfigError("pile: need rho0 > 0, E > 0 and 0 <= nu < 0.5");
+  }
+  const double length = config.real("geometry.length"), width = config.real("geometry.width");
+  if (!(length > 0 && width > 0)) throw ConfigError("pile: length and width must be positive");
+  CellShapes shapes;
+  ProblemSetup setup = setupBlock(config, {0, -width / 2, -width / 2},
+                                  {length, width / 2, width / 2}, {steel}, shapes);
+  for (std::size_t c = 0; c < shapes.volume.size(); ++c) {
+    setup.cells.rho.push_back(steel.rho0);
+    setup.cells.e.push_back(0.0);
+    setup.cells.v.push_back({0, 0, 0});
+    setup.cells.mat.push_back(0);
+  }
+  return setup;
+}
+
+// Mean sigma_xx = -p + S_xx of the cells touching the wall (x-min side).
+double wallStress(const Mesh& mesh, const State& state) {
+  const auto side = mesh.cell_face_side;
+  const auto p = state.p_c;
+  const auto S = state.S_c;
+  double sum = 0.0;
+  int count = 0;
+  Kokkos::parallel_reduce(
+      "lagremap::diagnostics::wall_stress", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
+      KOKKOS_LAMBDA(const Index c, double& acc) {
+        if (side(c, 0) == 0) acc += -p(c) + S(c, 0);
+      },
+      sum);
+  Kokkos::parallel_reduce(
+      "lagremap::diagnostics::wall_cells", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
+      KOKKOS_LAMBDA(const Index c, int& acc) { acc += side(c, 0) == 0 ? 1 : 0; }, count);
+  return count > 0 ? sum / count : 0.0;
+}
+
+double meanOver(const std::vector<std::pair<double, double>>& probe, double t0, double t1) {
+  double sum = 0.0;
+  int n = 0;
+  for (const auto& [t, value] : probe)
+    if (t >= t0 && t <= t1) sum += value, ++n;
+  return n > 0 ? sum / n : NAN;
+}
+
+std::vector<Check> finishPile(const Config& config, const FinalFields& fields,
+                              const std::string& out_dir) {
+  const double c = std::sqrt(config.real("steel.young") / config.real("steel.rho0"));
+  const double transit = config.real("geometry.length") / c;  // L/c = 2 ms
+  const double load = config.real("bc.xmax.sigma_xx");
+  const double plateau = 2.0 * load;  // reflection at the rigid wall doubles it
+  const double tol = config.real("check.plateau_tolerance") * std::abs(plateau);
+  double arrival = NAN;
+  for (const auto& [t, value] : fields.probe) {
+    if (value < 0.5 * plateau) {
+      arrival = t;
+      break;
+    }
+  }
+  double lateral = 0.0, axial = 0.0;
+  const Index n_cells = Index(fields.rho.extent(0));
+  for (Index cell = 0; cell < n_cells; ++cell) {
+    lateral = std::max({lateral, std::abs(fields.v(cell, 1)), std::abs(fields.v(cell, 2))});
+    axial = std::max(axial, std::abs(fields.v(cell, 0)));
+  }
+  std::ofstream csv;
+  if (!out_dir.empty()) csv.open(out_dir + "/pile_wall_stress.csv");
+  csv << "t,sigma_xx,exact\n";
+  for (const auto& [t, value] : fields.probe) {
+    const double exact = (t > transit && t < 3 * transit) ? plateau : 0.0;
+    csv << t << ',' << value << ',' << exact << '\n';
+  }
+  std::vector<Check> checks = {
+      {"wall_stress_before", meanOver(fields.probe, 0.25 * transit, 0.75 * transit), 0.0, tol,
+       "mean wall sigma_xx on [L/4c, 3L/4c] (exact 0)"},
+      {"wall_stress_plateau", meanOver(fields.probe, 1.25 * transit, 2.75 * transit), plateau, tol,
+       "mean wall sigma_xx on [1.25 L/c, 2.75 L/c] (exact 2 x imposed)"},
+      {"arrival_time", arrival, transit, config.real("check.arrival_tolerance"),
+       "first time the wall stress passes half the plateau (exact L/c)"},
+      {"lateral_velocity", lateral / std::max(axial, 1e-300), 0.0, 1e-3,
+       "max |v_y|, |v_z| / max |v_x| (nu = 0: no lateral motion)"}};
+  if (fields.time > 3.25 * transit) {
+    checks.push_back({"wall_stress_after", meanOver(fields.probe, 3.25 * transit, 3.75 * transit),
+                      0.0, tol, "mean wall sigma_xx on [3.25 L/c, 3.75 L/c] (exact 0)"});
+  }
+  return checks;
+}
+
+}  // namespace
+
+extern const Problem kPileProblem = {
+    "pile",
+    "3D hyper-elastic steel bar driven by an end traction (wall stress square wave)",
+    declarePile,
+    setupPile,
+    finishPile,
+    wallStress,
+    "wall_sigma_xx"};
+
+}  // namespace lagremap
