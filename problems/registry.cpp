@@ -7,10 +7,11 @@ extern const Problem kSodProblem;
 extern const Problem kSedovProblem;
 extern const Problem kWilkinsProblem;
 extern const Problem kPileProblem;
+extern const Problem kTaylorProblem;
 
 const std::vector<Problem>& problemRegistry() {
   static const std::vector<Problem> problems = {kSodProblem, kSedovProblem, kWilkinsProblem,
-                                                kPileProblem};
+                                                kTaylorProblem, kPileProblem};
   return problems;
 }
 

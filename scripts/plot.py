@@ -326,6 +326,37 @@ def plot_pile_wall_stress(run: Run, out_path: str) -> str:
     return save(fig, out_path)
 
 
+def plot_taylor(run: Run, out_path: str) -> str:
+    """Taylor impact: the deformed bar (cells coloured by density, the
+    mushroom at the wall) and the bar length against time with the paper's
+    final length."""
+    mesh_name, length_name = "taylor_mesh_z0.csv", "taylor_length.csv"
+    cells = run.table(mesh_name, CORNER_COLUMNS + ["density"])
+    polys = slice_polygons(cells, run.path(mesh_name))
+    fig, (ax_bar, ax_len) = plt.subplots(1, 2, figsize=(13, 4.8),
+                                         gridspec_kw={"width_ratios": [1.6, 1]})
+    art = draw_cells(ax_bar, polys, cells["density"])
+    fig.colorbar(art, ax=ax_bar, label=LABELS["rho"], shrink=0.8)
+    ax_bar.autoscale_view()
+    ax_bar.set_aspect("equal")
+    ax_bar.set_xlabel(LABELS["x"])
+    ax_bar.set_ylabel(LABELS["y"])
+    ax_bar.set_title("Deformed bar at t_end")
+    history = run.table(length_name, ["t", "length"])
+    ax_len.plot(history["t"], history["length"], "-", color="tab:blue", label="lagrange")
+    reference = run.check("final_length")
+    if reference and isinstance(reference.get("reference"), (int, float)):
+        ax_len.axhline(reference["reference"], ls="--", color="black",
+                       label=f"paper (Lagrange) {reference['reference']:g} m")
+    ax_len.set_xlabel(LABELS["t"])
+    ax_len.set_ylabel("bar length [m]")
+    ax_len.grid(alpha=0.3)
+    ax_len.legend(loc="best", fontsize="small")
+    fig.suptitle(run_title(run, "Taylor impact"))
+    fig.tight_layout()
+    return save(fig, out_path)
+
+
 # --------------------------------------------------------------------------
 # Generic plots (drawn for any problem whose run wrote the input file)
 # --------------------------------------------------------------------------
@@ -644,6 +675,7 @@ PROBLEM_PLOTS: Dict[str, List[Plot]] = {
     "sod": [Plot("sod_profiles.png", "sod_profile.csv", plot_sod_profiles)],
     "wilkins": [Plot("wilkins_profiles.png", "wilkins_profile.csv", plot_wilkins_profiles)],
     "pile": [Plot("pile_wall_stress.png", "pile_wall_stress.csv", plot_pile_wall_stress)],
+    "taylor": [Plot("taylor.png", "taylor_mesh_z0.csv", plot_taylor)],
 }
 
 # Plots drawn for any problem, as long as the run wrote their input: radial

@@ -41,6 +41,21 @@ TEST(Validation, WilkinsTwoWaveStructure) {
   EXPECT_LT(result.drift_energy, 1e-12);
 }
 
+// Planar Taylor impact at half resolution (100 x 20): final length within
+// 0.05 m of the paper's 4.62 (measured 4.621; 4.605 at full resolution), the
+// kinetic energy dissipated, and conservation to round-off.
+TEST(Validation, TaylorImpactHalfResolution) {
+  const RunResult result = runProblem(testing::problemOptions("taylor", {}, 0.5));
+  ASSERT_FALSE(result.failed) << result.failure;
+  for (const auto& check : result.checks) {
+    std::printf("taylor 100x20: %-18s %.6g (reference %.6g, tolerance %.3g)\n", check.name.c_str(),
+                check.value, check.reference, check.tolerance);
+    EXPECT_TRUE(check.pass()) << check.name;
+  }
+  EXPECT_LT(result.drift_energy, 1e-12);
+  EXPECT_LT(result.drift_momentum, 1e-12);
+}
+
 TEST(Validation, SodConvergenceOverADecade) {
   for (int order : {1, 2}) {
     double previous = 0.0;
