@@ -8,10 +8,11 @@ extern const Problem kSedovProblem;
 extern const Problem kWilkinsProblem;
 extern const Problem kPileProblem;
 extern const Problem kTaylorProblem;
+extern const Problem kShellProblem;
 
 const std::vector<Problem>& problemRegistry() {
-  static const std::vector<Problem> problems = {kSodProblem, kSedovProblem, kWilkinsProblem,
-                                                kTaylorProblem, kPileProblem};
+  static const std::vector<Problem> problems = {kSodProblem,    kSedovProblem, kWilkinsProblem,
+                                                kTaylorProblem, kPileProblem,  kShellProblem};
   return problems;
 }
 

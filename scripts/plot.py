@@ -357,6 +357,39 @@ def plot_taylor(run: Run, out_path: str) -> str:
     return save(fig, out_path)
 
 
+def plot_shell(run: Run, out_path: str) -> str:
+    """Shell collapse: the deformed quarter shell coloured by density, and the
+    inner and outer radii against time with Howell & Ball's stopping radii."""
+    mesh_name, radii_name = "shell_mesh_z0.csv", "shell_radii.csv"
+    cells = run.table(mesh_name, CORNER_COLUMNS + ["density"])
+    polys = slice_polygons(cells, run.path(mesh_name))
+    fig, (ax_mesh, ax_r) = plt.subplots(1, 2, figsize=(12, 5))
+    art = draw_cells(ax_mesh, polys, cells["density"])
+    fig.colorbar(art, ax=ax_mesh, label=LABELS["rho"], shrink=0.85)
+    ax_mesh.autoscale_view()
+    ax_mesh.set_aspect("equal")
+    ax_mesh.set_xlabel(LABELS["x"])
+    ax_mesh.set_ylabel(LABELS["y"])
+    ax_mesh.set_title("Shell at t_end")
+    radii = run.table(radii_name, ["t", "inner_radius", "outer_radius_incompressible"])
+    ax_r.plot(radii["t"], radii["inner_radius"], "-", color="tab:blue", label="inner radius")
+    ax_r.plot(radii["t"], radii["outer_radius_incompressible"], "-", color="tab:orange",
+              label="outer radius (shell area conserved)")
+    for name, colour in (("stopping_inner_radius", "tab:blue"),
+                         ("stopping_outer_radius", "tab:orange")):
+        check = run.check(name)
+        if check and isinstance(check.get("reference"), (int, float)):
+            ax_r.axhline(check["reference"], ls="--", color=colour, lw=0.8,
+                         label=f"Howell & Ball {1000 * check['reference']:.1f} mm")
+    ax_r.set_xlabel(LABELS["t"])
+    ax_r.set_ylabel("radius [m]")
+    ax_r.grid(alpha=0.3)
+    ax_r.legend(loc="best", fontsize="small")
+    fig.suptitle(run_title(run, "Beryllium shell collapse"))
+    fig.tight_layout()
+    return save(fig, out_path)
+
+
 # --------------------------------------------------------------------------
 # Generic plots (drawn for any problem whose run wrote the input file)
 # --------------------------------------------------------------------------
@@ -676,6 +709,7 @@ PROBLEM_PLOTS: Dict[str, List[Plot]] = {
     "wilkins": [Plot("wilkins_profiles.png", "wilkins_profile.csv", plot_wilkins_profiles)],
     "pile": [Plot("pile_wall_stress.png", "pile_wall_stress.csv", plot_pile_wall_stress)],
     "taylor": [Plot("taylor.png", "taylor_mesh_z0.csv", plot_taylor)],
+    "shell": [Plot("shell.png", "shell_mesh_z0.csv", plot_shell)],
 }
 
 # Plots drawn for any problem, as long as the run wrote their input: radial
