@@ -1,4 +1,5 @@
 #include "../kernels/hex.hpp"
+#include "../src/materials.hpp"
 #include "../src/problem.hpp"
 
 namespace lagremap {
@@ -41,6 +42,31 @@ void declareBoundaryKeys(Config& config, const std::array<const char*, kNumSides
                      {"free", "wall", "symmetry", "fixed", "traction"},
                      std::string("boundary condition on the ") + sideName(side) + " side");
   }
+}
+
+void declareHypoSolidKeys(Config& config, const std::string& prefix, const std::string& preset) {
+  const MaterialParams m = materialPreset(preset);
+  config.addReal(prefix + ".rho0", m.rho0, "kg/m^3", "reference density (Mie-Gruneisen)");
+  config.addReal(prefix + ".a0", m.a0, "m/s", "bulk sound speed a0 (Mie-Gruneisen)");
+  config.addReal(prefix + ".Gamma0", m.Gamma0, "-", "Gruneisen coefficient Gamma0");
+  config.addReal(prefix + ".s", m.s, "-", "Hugoniot slope s (Us = a0 + s up)");
+  config.addReal(prefix + ".mu", m.mu, "Pa", "shear modulus (hypo-elastic)");
+  config.addReal(prefix + ".yield_stress", m.yield_stress, "Pa", "von Mises yield stress Y0");
+}
+
+MaterialParams readHypoSolid(const Config& config, const std::string& prefix,
+                             const std::string& preset) {
+  MaterialParams m = materialPreset(preset);
+  m.rho0 = config.real(prefix + ".rho0");
+  m.a0 = config.real(prefix + ".a0");
+  m.Gamma0 = config.real(prefix + ".Gamma0");
+  m.s = config.real(prefix + ".s");
+  m.mu = config.real(prefix + ".mu");
+  m.yield_stress = config.real(prefix + ".yield_stress");
+  if (!(m.rho0 > 0 && m.a0 > 0 && m.s >= 0 && m.mu >= 0 && m.yield_stress >= 0)) {
+    throw ConfigError(prefix + ": rho0 and a0 must be > 0; s, mu and yield_stress >= 0");
+  }
+  return m;
 }
 
 void declareTractionKeys(Config& config, int side, const SymMat3& stress) {

@@ -20,13 +20,7 @@ constexpr double kPi = 3.14159265358979323846;
 
 void declareShell(Config& config) {
   config.addReal("t_end", 130e-6, "s", "final time");
-  const MaterialParams be = materialPreset("Be-hypo");
-  config.addReal("be.rho0", be.rho0, "kg/m^3", "reference density (Mie-Gruneisen)");
-  config.addReal("be.a0", be.a0, "m/s", "bulk sound speed a0");
-  config.addReal("be.Gamma0", be.Gamma0, "-", "Gruneisen coefficient");
-  config.addReal("be.s", be.s, "-", "Hugoniot slope s");
-  config.addReal("be.mu", be.mu, "Pa", "shear modulus");
-  config.addReal("be.yield_stress", be.yield_stress, "Pa", "von Mises yield stress Y0");
+  declareHypoSolidKeys(config, "be", "Be-hypo");
   config.addReal("shell.inner_radius", 0.08, "m", "inner radius Ri");
   config.addReal("shell.outer_radius", 0.1, "m", "outer radius Ro");
   config.addReal("shell.v0", 417.1, "m/s", "inward speed at the inner radius");
@@ -42,13 +36,7 @@ void declareShell(Config& config) {
 }
 
 ProblemSetup setupShell(const Config& config) {
-  MaterialParams be = materialPreset("Be-hypo");
-  be.rho0 = config.real("be.rho0");
-  be.a0 = config.real("be.a0");
-  be.Gamma0 = config.real("be.Gamma0");
-  be.s = config.real("be.s");
-  be.mu = config.real("be.mu");
-  be.yield_stress = config.real("be.yield_stress");
+  const MaterialParams be = readHypoSolid(config, "be", "Be-hypo");
   const double ri = config.real("shell.inner_radius"), ro = config.real("shell.outer_radius");
   const double thickness = config.real("geometry.thickness");
   if (!(ri > 0 && ro > ri && thickness > 0)) {

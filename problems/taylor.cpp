@@ -16,13 +16,7 @@ namespace {
 
 void declareTaylor(Config& config) {
   config.addReal("t_end", 5e-3, "s", "final time");
-  const MaterialParams al = materialPreset("Al");
-  config.addReal("al.rho0", al.rho0, "kg/m^3", "reference density (Mie-Gruneisen)");
-  config.addReal("al.a0", al.a0, "m/s", "bulk sound speed a0");
-  config.addReal("al.Gamma0", al.Gamma0, "-", "Gruneisen coefficient");
-  config.addReal("al.s", al.s, "-", "Hugoniot slope s");
-  config.addReal("al.mu", al.mu, "Pa", "shear modulus");
-  config.addReal("al.yield_stress", al.yield_stress, "Pa", "von Mises yield stress Y0");
+  declareHypoSolidKeys(config, "al", "Al");
   config.addReal("bar.vx", -150.0, "m/s", "impact velocity");
   config.addReal("geometry.length", 5.0, "m", "bar length along x");
   config.addReal("geometry.height", 1.0, "m", "bar height along y");
@@ -36,13 +30,7 @@ void declareTaylor(Config& config) {
 }
 
 ProblemSetup setupTaylor(const Config& config) {
-  MaterialParams al = materialPreset("Al");
-  al.rho0 = config.real("al.rho0");
-  al.a0 = config.real("al.a0");
-  al.Gamma0 = config.real("al.Gamma0");
-  al.s = config.real("al.s");
-  al.mu = config.real("al.mu");
-  al.yield_stress = config.real("al.yield_stress");
+  const MaterialParams al = readHypoSolid(config, "al", "Al");
   const double length = config.real("geometry.length"), height = config.real("geometry.height");
   const double thickness = config.real("geometry.thickness");
   if (!(length > 0 && height > 0 && thickness > 0)) {

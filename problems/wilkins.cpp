@@ -21,32 +21,9 @@
 namespace lagremap {
 namespace {
 
-void declareMaterial(Config& config, const std::string& prefix, const MaterialParams& m) {
-  config.addReal(prefix + ".rho0", m.rho0, "kg/m^3", "reference density (Mie-Gruneisen)");
-  config.addReal(prefix + ".a0", m.a0, "m/s", "bulk sound speed a0 (Mie-Gruneisen)");
-  config.addReal(prefix + ".Gamma0", m.Gamma0, "-", "Gruneisen coefficient Gamma0");
-  config.addReal(prefix + ".s", m.s, "-", "Hugoniot slope s (Us = a0 + s up)");
-  config.addReal(prefix + ".mu", m.mu, "Pa", "shear modulus (hypo-elastic)");
-  config.addReal(prefix + ".yield_stress", m.yield_stress, "Pa", "von Mises yield stress Y0");
-}
-
-MaterialParams readMaterial(const Config& config, const std::string& prefix) {
-  MaterialParams m = materialPreset("Al");
-  m.rho0 = config.real(prefix + ".rho0");
-  m.a0 = config.real(prefix + ".a0");
-  m.Gamma0 = config.real(prefix + ".Gamma0");
-  m.s = config.real(prefix + ".s");
-  m.mu = config.real(prefix + ".mu");
-  m.yield_stress = config.real(prefix + ".yield_stress");
-  if (!(m.rho0 > 0 && m.a0 > 0 && m.s >= 0 && m.mu >= 0 && m.yield_stress >= 0)) {
-    throw ConfigError("wilkins: " + prefix + ": rho0, a0 must be > 0; s, mu, yield_stress >= 0");
-  }
-  return m;
-}
-
 void declareWilkins(Config& config) {
   config.addReal("t_end", 2.5e-6, "s", "final time");
-  declareMaterial(config, "al", materialPreset("Al"));
+  declareHypoSolidKeys(config, "al", "Al");
   config.addReal("al.p0", 1e5, "Pa", "initial pressure (e0 = p0 / (rho0 Gamma0))");
   config.addReal("flyer.vx", 800.0, "m/s", "flyer velocity");
   config.addReal("geometry.x_min", -0.01, "m",
@@ -62,7 +39,7 @@ void declareWilkins(Config& config) {
 }
 
 ProblemSetup setupWilkins(const Config& config) {
-  const MaterialParams al = readMaterial(config, "al");
+  const MaterialParams al = readHypoSolid(config, "al", "Al");
   const double x_min = config.real("geometry.x_min"), x_max = config.real("geometry.x_max");
   const double flyer_min = config.real("geometry.flyer_min");
   const double flyer_max = config.real("geometry.flyer_max");

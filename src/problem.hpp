@@ -67,6 +67,11 @@ const Problem& findProblem(const std::string& name);
 // Helpers shared by the generators.
 void declareMeshKeys(Config& config, int nx, int ny, int nz);
 void declareBoundaryKeys(Config& config, const std::array<const char*, kNumSides>& defaults);
+// <prefix>.rho0, a0, Gamma0, s, mu, yield_stress: a Mie-Gruneisen,
+// hypo-elastic perfectly plastic solid, with the named preset's defaults.
+void declareHypoSolidKeys(Config& config, const std::string& prefix, const std::string& preset);
+MaterialParams readHypoSolid(const Config& config, const std::string& prefix,
+                             const std::string& preset);
 // bc.<side>.sigma_xx ... sigma_xz: the stress imposed on a traction side.
 void declareTractionKeys(Config& config, int side, const SymMat3& stress);
 SideBoundaries readBoundaries(const Config& config);

@@ -353,8 +353,8 @@ RunResult runProblem(const RunOptions& options) {
   // --- conservation audit: change of each total minus what the boundaries put in.
   // Scales: the largest energy the run held or received (a body at rest
   // driven by a traction starts with zero energy).
-  const double energy_scale = std::max(
-      {std::abs(initial.total()), std::abs(totals.total()), std::abs(work), 1e-300});
+  const double energy_scale =
+      std::max({std::abs(initial.total()), std::abs(totals.total()), std::abs(work), 1e-300});
   const double momentum_scale = std::max(std::sqrt(2.0 * initial.mass * energy_scale), 1e-300);
   result.drift_mass = std::abs(totals.mass - initial.mass) / initial.mass;
   result.drift_momentum = norm(totals.momentum - initial.momentum - impulse) / momentum_scale;
