@@ -10,7 +10,6 @@
 #include <fstream>
 #include <iomanip>
 
-#include "../src/materials.hpp"
 #include "../src/problem.hpp"
 
 namespace lagremap {

@@ -8,7 +8,6 @@
 #include <fstream>
 #include <iomanip>
 
-#include "../src/materials.hpp"
 #include "../src/problem.hpp"
 
 namespace lagremap {
