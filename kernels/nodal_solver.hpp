@@ -134,7 +134,7 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
 
         // --- B_cp = M_cp V_c(p) - sigma_c(p) A_cp with sigma = -p I + S (the
         // deviator, like the whole stress of a solid, constant over the cell)
-        const SymMat3 deviator = loadSym(s.S_c, c);
+        const SymMat3 deviator = solid ? loadSym(s.S_c, c) : identitySym(0.0);
         for (int p = 0; p < 8; ++p) {
           const Index corner = 8 * c + p;
           const SymMat3 impedance = loadSym(s.M_cp, corner);
