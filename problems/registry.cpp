@@ -10,10 +10,12 @@ extern const Problem kWilkinsProblem;
 extern const Problem kPileProblem;
 extern const Problem kTaylorProblem;
 extern const Problem kShellProblem;
+extern const Problem kBeamProblem;
 
 const std::vector<Problem>& problemRegistry() {
   static const std::vector<Problem> problems = {kSodProblem,    kSedovProblem, kWilkinsProblem,
-                                                kTaylorProblem, kPileProblem,  kShellProblem};
+                                                kTaylorProblem, kPileProblem,  kBeamProblem,
+                                                kShellProblem};
   return problems;
 }
 

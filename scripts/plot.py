@@ -390,6 +390,26 @@ def plot_shell(run: Run, out_path: str) -> str:
     return save(fig, out_path)
 
 
+def plot_beam_tip(run: Run, out_path: str) -> str:
+    """Oscillating plate: vertical tip displacement against time (paper
+    Fig. 12), with the theoretical half period marked."""
+    t = run.table("beam_tip.csv", ["t", "tip_displacement_y"])
+    fig, ax = plt.subplots(figsize=(9, 4.8))
+    ax.plot(t["t"], t["tip_displacement_y"], "-", color="tab:blue", label="lagrange")
+    ax.axhline(0.0, color="0.5", lw=0.6)
+    check = run.check("half_period")
+    if check and isinstance(check.get("reference"), (int, float)):
+        ax.axvline(check["reference"], ls="--", color="black", lw=0.8,
+                   label=f"half period (Timoshenko) {1e6 * check['reference']:.2f} us")
+    ax.set_xlabel(LABELS["t"])
+    ax.set_ylabel("tip displacement y [m]")
+    ax.grid(alpha=0.3)
+    ax.legend(loc="best", fontsize="small")
+    ax.set_title(run_title(run, "Oscillating plate: tip displacement"))
+    fig.tight_layout()
+    return save(fig, out_path)
+
+
 # --------------------------------------------------------------------------
 # Generic plots (drawn for any problem whose run wrote the input file)
 # --------------------------------------------------------------------------
@@ -710,6 +730,7 @@ PROBLEM_PLOTS: Dict[str, List[Plot]] = {
     "pile": [Plot("pile_wall_stress.png", "pile_wall_stress.csv", plot_pile_wall_stress)],
     "taylor": [Plot("taylor.png", "taylor_mesh_z0.csv", plot_taylor)],
     "shell": [Plot("shell.png", "shell_mesh_z0.csv", plot_shell)],
+    "beam": [Plot("beam_tip.png", "beam_tip.csv", plot_beam_tip)],
 }
 
 # Plots drawn for any problem, as long as the run wrote their input: radial

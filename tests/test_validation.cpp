@@ -56,6 +56,19 @@ TEST(Validation, TaylorImpactHalfResolution) {
   EXPECT_LT(result.drift_momentum, 1e-12);
 }
 
+// The Neo-Hookean plate in its first bending mode: half period within 5% of
+// the Timoshenko-corrected theory, energy conserved to round-off.
+TEST(Validation, BeamBendingPeriod) {
+  const RunResult result = runProblem(testing::problemOptions("beam"));
+  ASSERT_FALSE(result.failed) << result.failure;
+  ASSERT_EQ(result.checks.size(), 1u);
+  std::printf("beam: half period %.4g s (reference %.4g)\n", result.checks[0].value,
+              result.checks[0].reference);
+  EXPECT_TRUE(result.checks[0].pass());
+  EXPECT_LT(result.drift_energy, 1e-12);
+  EXPECT_LT(result.drift_momentum, 1e-12);
+}
+
 TEST(Validation, SodConvergenceOverADecade) {
   for (int order : {1, 2}) {
     double previous = 0.0;
