@@ -12,7 +12,6 @@
 #include <fstream>
 #include <iomanip>
 
-#include "../src/materials.hpp"
 #include "../src/problem.hpp"
 
 namespace lagremap {
@@ -20,10 +19,7 @@ namespace {
 
 void declareBeam(Config& config) {
   config.addReal("t_end", 3e-5, "s", "final time");
-  const MaterialParams be = materialPreset("Be-hyper");
-  config.addReal("be.rho0", be.rho0, "kg/m^3", "reference density");
-  config.addReal("be.young", be.young, "Pa", "Young's modulus E (Neo-Hookean)");
-  config.addReal("be.poisson", be.poisson, "-", "Poisson's ratio nu (Neo-Hookean)");
+  declareNeoHookeanKeys(config, "be", "Be-hyper");
   config.addReal("geometry.length", 0.06, "m", "plate length L along x");
   config.addReal("geometry.height", 0.01, "m", "plate height along y");
   config.addReal("geometry.depth", 0.01, "m", "plate depth along z");
@@ -39,13 +35,7 @@ void declareBeam(Config& config) {
 }
 
 ProblemSetup setupBeam(const Config& config) {
-  MaterialParams be = materialPreset("Be-hyper");
-  be.rho0 = config.real("be.rho0");
-  be.young = config.real("be.young");
-  be.poisson = config.real("be.poisson");
-  if (!(be.rho0 > 0 && be.young > 0 && be.poisson >= 0 && be.poisson < 0.5)) {
-    throw ConfigError("beam: need rho0 > 0, E > 0 and 0 <= nu < 0.5");
-  }
+  const MaterialParams be = readNeoHookean(config, "be", "Be-hyper");
   const double length = config.real("geometry.length"), height = config.real("geometry.height");
   const double depth = config.real("geometry.depth");
   if (!(length > 0 && height > 0 && depth > 0)) throw ConfigError("beam: sizes must be positive");
@@ -70,20 +60,7 @@ ProblemSetup setupBeam(const Config& config) {
 // Tip displacement: mean y of the centroids of the cells on the x-max face
 // (zero initially by symmetry of the cross-section).
 double tipDisplacement(const Mesh& mesh, const State& state) {
-  const auto side = mesh.cell_face_side;
-  const auto x_c = state.x_c;
-  double sum = 0.0;
-  int count = 0;
-  Kokkos::parallel_reduce(
-      "lagremap::diagnostics::tip_displacement", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
-      KOKKOS_LAMBDA(const Index c, double& acc) {
-        if (side(c, 1) == 1) acc += x_c(c, 1);
-      },
-      sum);
-  Kokkos::parallel_reduce(
-      "lagremap::diagnostics::tip_cells", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
-      KOKKOS_LAMBDA(const Index c, int& acc) { acc += side(c, 1) == 1 ? 1 : 0; }, count);
-  return count > 0 ? sum / count : 0.0;
+  return sideMeanCentroid(mesh, state, 1, 1);
 }
 
 std::vector<Check> finishBeam(const Config& config, const FinalFields& fields,

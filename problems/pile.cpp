@@ -7,7 +7,6 @@
 #include <cmath>
 #include <fstream>
 
-#include "../src/materials.hpp"
 #include "../src/problem.hpp"
 
 namespace lagremap {
@@ -15,10 +14,7 @@ namespace {
 
 void declarePile(Config& config) {
   config.addReal("t_end", 8e-3, "s", "final time");
-  const MaterialParams steel = materialPreset("Steel-hyper");
-  config.addReal("steel.rho0", steel.rho0, "kg/m^3", "reference density");
-  config.addReal("steel.young", steel.young, "Pa", "Young's modulus E (Neo-Hookean)");
-  config.addReal("steel.poisson", steel.poisson, "-", "Poisson's ratio nu (Neo-Hookean)");
+  declareNeoHookeanKeys(config, "steel", "Steel-hyper");
   config.addReal("geometry.length", 10.0, "m", "bar length along x");
   config.addReal("geometry.width", 1.0, "m", "bar width in y and z");
   declareMeshKeys(config, 100, 3, 3);
@@ -30,13 +26,7 @@ void declarePile(Config& config) {
 }
 
 ProblemSetup setupPile(const Config& config) {
-  MaterialParams steel = materialPreset("Steel-hyper");
-  steel.rho0 = config.real("steel.rho0");
-  steel.young = config.real("steel.young");
-  steel.poisson = config.real("steel.poisson");
-  if (!(steel.rho0 > 0 && steel.young > 0 && steel.poisson >= 0 && steel.poisson < 0.5)) {
-    throw ConfigError("pile: need rho0 > 0, E > 0 and 0 <= nu < 0.5");
-  }
+  const MaterialParams steel = readNeoHookean(config, "steel", "Steel-hyper");
   const double length = config.real("geometry.length"), width = config.real("geometry.width");
   if (!(length > 0 && width > 0)) throw ConfigError("pile: length and width must be positive");
   CellShapes shapes;
@@ -53,21 +43,7 @@ ProblemSetup setupPile(const Config& config) {
 
 // Mean sigma_xx = -p + S_xx of the cells touching the wall (x-min side).
 double wallStress(const Mesh& mesh, const State& state) {
-  const auto side = mesh.cell_face_side;
-  const auto p = state.p_c;
-  const auto S = state.S_c;
-  double sum = 0.0;
-  int count = 0;
-  Kokkos::parallel_reduce(
-      "lagremap::diagnostics::wall_stress", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
-      KOKKOS_LAMBDA(const Index c, double& acc) {
-        if (side(c, 0) == 0) acc += -p(c) + S(c, 0);
-      },
-      sum);
-  Kokkos::parallel_reduce(
-      "lagremap::diagnostics::wall_cells", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
-      KOKKOS_LAMBDA(const Index c, int& acc) { acc += side(c, 0) == 0 ? 1 : 0; }, count);
-  return count > 0 ? sum / count : 0.0;
+  return sideMeanStressXX(mesh, state, 0);
 }
 
 double meanOver(const std::vector<std::pair<double, double>>& probe, double t0, double t1) {

@@ -1,4 +1,5 @@
 #include "../kernels/hex.hpp"
+#include "../src/diagnostics.hpp"
 #include "../src/materials.hpp"
 #include "../src/problem.hpp"
 
@@ -69,6 +70,59 @@ MaterialParams readHypoSolid(const Config& config, const std::string& prefix,
     throw ConfigError(prefix + ": rho0 and a0 must be > 0; s, mu and yield_stress >= 0");
   }
   return m;
+}
+
+void declareNeoHookeanKeys(Config& config, const std::string& prefix, const std::string& preset) {
+  const MaterialParams m = materialPreset(preset);
+  config.addReal(prefix + ".rho0", m.rho0, "kg/m^3", "reference density");
+  config.addReal(prefix + ".young", m.young, "Pa", "Young's modulus E (Neo-Hookean)");
+  config.addReal(prefix + ".poisson", m.poisson, "-", "Poisson's ratio nu (Neo-Hookean)");
+}
+
+MaterialParams readNeoHookean(const Config& config, const std::string& prefix,
+                              const std::string& preset) {
+  MaterialParams m = materialPreset(preset);
+  m.rho0 = config.real(prefix + ".rho0");
+  m.young = config.real(prefix + ".young");
+  m.poisson = config.real(prefix + ".poisson");
+  if (!(m.rho0 > 0 && m.young > 0 && m.poisson >= 0 && m.poisson < 0.5)) {
+    throw ConfigError(prefix + ": need rho0 > 0, young > 0 and 0 <= poisson < 0.5");
+  }
+  return m;
+}
+
+namespace {
+// Mean of value(c) over the cells with a face on `side`: one reduction of (sum, count).
+template <class Value>
+double sideMean(const Mesh& mesh, int side, const char* label, Value value) {
+  const auto face_side = mesh.cell_face_side;
+  SumArray<2> sums;
+  Kokkos::parallel_reduce(
+      label, Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
+      KOKKOS_LAMBDA(const Index c, SumArray<2>& acc) {
+        if (face_side(c, side) == side) {
+          acc.v[0] += value(c);
+          acc.v[1] += 1.0;
+        }
+      },
+      Kokkos::Sum<SumArray<2>>(sums));
+  return sums.v[1] > 0 ? sums.v[0] / sums.v[1] : 0.0;
+}
+}  // namespace
+
+double sideMeanStressXX(const Mesh& mesh, const State& state, int side) {
+  const auto p = state.p_c;
+  const auto S = state.S_c;
+  return sideMean(
+      mesh, side, "lagremap::diagnostics::side_stress_xx",
+      KOKKOS_LAMBDA(const Index c) { return -p(c) + S(c, 0); });
+}
+
+double sideMeanCentroid(const Mesh& mesh, const State& state, int side, int axis) {
+  const auto x_c = state.x_c;
+  return sideMean(
+      mesh, side, "lagremap::diagnostics::side_centroid",
+      KOKKOS_LAMBDA(const Index c) { return x_c(c, axis); });
 }
 
 void declareTractionKeys(Config& config, int side, const SymMat3& stress) {

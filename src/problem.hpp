@@ -72,6 +72,14 @@ void declareBoundaryKeys(Config& config, const std::array<const char*, kNumSides
 void declareHypoSolidKeys(Config& config, const std::string& prefix, const std::string& preset);
 MaterialParams readHypoSolid(const Config& config, const std::string& prefix,
                              const std::string& preset);
+// <prefix>.rho0, young, poisson: a Neo-Hookean hyper-elastic solid.
+void declareNeoHookeanKeys(Config& config, const std::string& prefix, const std::string& preset);
+MaterialParams readNeoHookean(const Config& config, const std::string& prefix,
+                              const std::string& preset);
+// Mean over the cells with a face on `side` of sigma_xx = -p + S_xx (solids'
+// wall stress) or of the centroid coordinate `axis` (a tip position).
+double sideMeanStressXX(const Mesh& mesh, const State& state, int side);
+double sideMeanCentroid(const Mesh& mesh, const State& state, int side, int axis);
 // bc.<side>.sigma_xx ... sigma_xz: the stress imposed on a traction side.
 void declareTractionKeys(Config& config, int side, const SymMat3& stress);
 SideBoundaries readBoundaries(const Config& config);

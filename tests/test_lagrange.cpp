@@ -132,6 +132,28 @@ TEST(Lagrange, PileWallStressSquareWaveAndEnergyBalance) {
   EXPECT_LT(result.drift_energy, 1e-12);
 }
 
+// A `fixed` end holds its nodes at rest (all three directions): on the 1D bar,
+// whose nodes move only along x, it must give exactly the wall's answer, and
+// the end nodes must not have moved.
+TEST(Lagrange, FixedBoundaryHoldsItsNodes) {
+  const RunResult wall = runProblem(problemOptions("sod", {"t_end=0.05"}));
+  const RunResult fixed =
+      runProblem(problemOptions("sod", {"t_end=0.05", "bc.xmin=fixed", "bc.xmax=fixed"}));
+  ASSERT_FALSE(wall.failed);
+  ASSERT_FALSE(fixed.failed);
+  ASSERT_EQ(wall.steps, fixed.steps);
+  const Index n_cells = Index(wall.fields.rho.extent(0));
+  for (Index c = 0; c < n_cells; ++c) {
+    EXPECT_NEAR(fixed.fields.rho(c), wall.fields.rho(c), 1e-12) << c;
+  }
+  const auto& x = fixed.fields.mesh.x_n;
+  int end_nodes = 0;
+  for (Index n = 0; n < Index(x.extent(0)); ++n) {
+    end_nodes += (x(n, 0) == 0.0 || x(n, 0) == 1.0) ? 1 : 0;
+  }
+  EXPECT_EQ(end_nodes, 8);  // 4 nodes at each end, exactly where they started
+}
+
 // Walls on three sides, free surfaces on the other three: mass exactly, and
 // momentum and total energy to round-off once the wall impulse and work (zero
 // for slip walls) are accounted for.
