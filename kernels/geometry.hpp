@@ -57,24 +57,13 @@ KOKKOS_INLINE_FUNCTION void cellGeometryAndThermo(const CellNodesView& cell_node
   s.aL_c(c) = aL;
   s.aT_c(c) = aT;
 
-  // Corner impedance (DESIGN §3, nodal solver).
-  SymMat3 impedance[8];
-  for (int p = 0; p < 8; ++p) impedance[p] = identitySym(0.0);
+  // Corner impedance (DESIGN §3, nodal solver) from the corner-face sums.
   const double rho_aL = rho * aL, rho_aT = rho * aT;
-  for (int f = 0; f < 6; ++f) {
-    for (int k = 0; k < 4; ++k) {
-      const Vec3& w = geo.corner_face[f][k];
-      const double area2 = dot(w, w);
-      if (!(area2 > 0.0)) continue;  // degenerate corner face carries no impedance
-      const double area = math::sqrt(area2);
-      SymMat3& m = impedance[hex::faceNode(f, k)];
-      m += outerSelf(w, (rho_aL - rho_aT) / area);
-      if (rho_aT != 0.0) m += identitySym(rho_aT * area);
-    }
-  }
   for (int p = 0; p < 8; ++p) {
+    SymMat3 impedance = (rho_aL - rho_aT) * geo.normal_moment[p];
+    impedance += identitySym(rho_aT * geo.corner_face_area[p]);
     storeVec3(s.A_cp, 8 * c + p, geo.corner[p]);
-    storeSym(s.M_cp, 8 * c + p, impedance[p]);
+    storeSym(s.M_cp, 8 * c + p, impedance);
   }
 
   const bool finite_state =

@@ -86,39 +86,71 @@ KOKKOS_INLINE_FUNCTION CellShape cellShape(const Vec3 x[8]) {
 }
 
 // Everything the Lagrangian phase needs from one cell's geometry in a single
-// sweep over its 24 triangles: the 24 corner-face vectors (for the nodal
-// impedance), their sums per node A_cp, and the volume, centroid and max face
-// area. A tetrahedron (origin, a, b, face point) has volume 1/3 (a - origin) . s_t n_t,
-// so the triangle area vectors serve both.
+// sweep over its 24 triangles: the corner vectors A_cp, the volume, centroid
+// and max face area, and the two sums over a corner's 3 corner faces that the
+// nodal impedance is made of (DESIGN §3),
+//   sum_f s_pf Q_cfp = rho (aL - aT) sum_f s_pf n_pf (x) n_pf + rho aT (sum_f s_pf) I,
+// so the 24 corner-face vectors never need to be stored. A tetrahedron
+// (origin, a, b, face point) has volume 1/3 (a - origin) . s_t n_t, so the
+// triangle area vectors serve the volume and centroid too.
 struct CellGeometry {
-  Vec3 corner_face[6][4];  // s_pf n_pf of face f at its k-th node (hex::faceNode(f, k))
-  Vec3 corner[8];          // A_cp = sum_f s_pf n_pf
+  Vec3 corner[8];              // A_cp = sum_f s_pf n_pf
+  SymMat3 normal_moment[8];    // sum_f s_pf n_pf (x) n_pf
+  double corner_face_area[8];  // sum_f s_pf
   CellShape shape;
 };
 
 KOKKOS_INLINE_FUNCTION void cellGeometry(const Vec3 x[8], CellGeometry& g) {
   const Vec3 origin = x[0];
-  double volume = 0.0, max_area2 = 0.0;
-  Vec3 first_moment{0.0, 0.0, 0.0};  // relative to origin
-  for (int p = 0; p < 8; ++p) g.corner[p] = Vec3{0.0, 0.0, 0.0};
+  // Constant factors are folded out of the 24-triangle loop: with the doubled
+  // triangle area vectors T_k = (q_k+1 - q_k) x (face point - q_k) = 2 s_t n_t,
+  // the tetrahedron (origin, q_k, q_k+1, face point) has volume q_k . T_k / 6
+  // and centroid (q_k + q_k+1 + face point) / 4, so
+  //   volume = sum(q_k . T_k) / 6,  centroid = sum((q_k . T_k)(q_k + q_k+1 + fp)) / (4 sum(q_k .
+  //   T_k)).
+  double six_volume = 0.0, max_area2 = 0.0;
+  Vec3 weighted_sum{0.0, 0.0,
+                    0.0};  // sum (q_k . T_k)(q_k + q_k+1 + face point), relative to origin
+  for (int p = 0; p < 8; ++p) {
+    g.corner[p] = Vec3{0.0, 0.0, 0.0};
+    g.normal_moment[p] = SymMat3{0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+    g.corner_face_area[p] = 0.0;
+  }
+  LAGREMAP_UNROLL
   for (int f = 0; f < 6; ++f) {
     Vec3 q[4];
     for (int k = 0; k < 4; ++k) q[k] = x[faceNode(f, k)] - origin;
-    Vec3 tri[4];
-    faceTriangles(q, tri);
-    const Vec3 face_area = cornerVectorsOfTriangles(tri, g.corner_face[f]);
     const Vec3 face_point = 0.25 * (q[0] + q[1] + q[2] + q[3]);
+    Vec3 doubled[4];  // T_k = 2 s_t n_t
+    for (int k = 0; k < 4; ++k) doubled[k] = cross(q[(k + 1) & 3] - q[k], face_point - q[k]);
+    const Vec3 doubled_face = doubled[0] + doubled[1] + doubled[2] + doubled[3];
+    LAGREMAP_UNROLL
     for (int k = 0; k < 4; ++k) {
-      // tet (origin, q_k, q_k+1, face point): 1/3 q_k . s_t n_t
-      const double tet_volume = dot(q[k], tri[k]) / 3.0;
-      volume += tet_volume;
-      first_moment += (0.25 * tet_volume) * (q[k] + q[(k + 1) & 3] + face_point);
-      g.corner[faceNode(f, k)] += g.corner_face[f][k];
+      const double weight = dot(q[k], doubled[k]);
+      six_volume += weight;
+      weighted_sum += weight * (q[k] + q[(k + 1) & 3] + face_point);
+      // s_pf n_pf = 1/3 (t_k-1 + t_k + 1/4 face) = 1/6 (T_k-1 + T_k + 1/4 sum T)
+      const Vec3 w = (1.0 / 6.0) * (doubled[(k + 3) & 3] + doubled[k] + 0.25 * doubled_face);
+      const int p = faceNode(f, k);
+      g.corner[p] += w;
+      const double area2 = dot(w, w);
+      if (area2 > 0.0) {  // a degenerate corner face has no normal and adds nothing
+        const double area = math::sqrt(area2);
+        const Vec3 n = (1.0 / area) * w;
+        SymMat3& m = g.normal_moment[p];
+        m.xx += n.x * w.x;
+        m.yy += n.y * w.y;
+        m.zz += n.z * w.z;
+        m.xy += n.x * w.y;
+        m.yz += n.y * w.z;
+        m.xz += n.x * w.z;
+        g.corner_face_area[p] += area;
+      }
     }
-    const double area2 = dot(face_area, face_area);
+    const double area2 = 0.25 * dot(doubled_face, doubled_face);
     max_area2 = area2 > max_area2 ? area2 : max_area2;
   }
-  g.shape = {volume, origin + (1.0 / volume) * first_moment, math::sqrt(max_area2)};
+  g.shape = {six_volume / 6.0, origin + (0.25 / six_volume) * weighted_sum, math::sqrt(max_area2)};
 }
 
 // The 8 corner vectors A_cp = sum_f s_pf n_pf = d v_c / d x_p (GCL, DESIGN §2).

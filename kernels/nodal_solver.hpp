@@ -102,14 +102,20 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
           const SymMat3 inv = lsq.solver();
           const Vec3 grad_vx = inv * rhs_vx, grad_vy = inv * rhs_vy, grad_vz = inv * rhs_vz;
           const Vec3 grad_p = inv * rhs_p;
-          // Barth-Jespersen (beta = 1) per variable, over the 8 vertices.
+          // Barth-Jespersen (beta = 1) per variable, over the 8 vertices; the
+          // unlimited vertex increments are kept for the limited values.
           VertexExcursion ex_vx, ex_vy, ex_vz, ex_p;
+          Vec3 dv_node[8];
+          double dp_node[8];
+          LAGREMAP_UNROLL
           for (int p = 0; p < 8; ++p) {
             const Vec3 d = x[p] - centroid;
-            ex_vx.include(dot(grad_vx, d));
-            ex_vy.include(dot(grad_vy, d));
-            ex_vz.include(dot(grad_vz, d));
-            ex_p.include(dot(grad_p, d));
+            dv_node[p] = Vec3{dot(grad_vx, d), dot(grad_vy, d), dot(grad_vz, d)};
+            dp_node[p] = dot(grad_p, d);
+            ex_vx.include(dv_node[p].x);
+            ex_vy.include(dv_node[p].y);
+            ex_vz.include(dv_node[p].z);
+            ex_p.include(dp_node[p]);
           }
           const double phi_vx = cellLimiter(ex_vx, v_cell.x, vx, 1.0);
           const double phi_vy = cellLimiter(ex_vy, v_cell.y, vy, 1.0);
@@ -119,11 +125,11 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
           // the stress at the node ahead of it down to the unshocked value and
           // the elastic precursor is never driven.
           const double phi_p = solid ? 0.0 : cellLimiter(ex_p, p_cell, pb, 1.0);
+          LAGREMAP_UNROLL
           for (int p = 0; p < 8; ++p) {
-            const Vec3 d = x[p] - centroid;
-            v_node[p] = v_cell + Vec3{phi_vx * dot(grad_vx, d), phi_vy * dot(grad_vy, d),
-                                      phi_vz * dot(grad_vz, d)};
-            p_node[p] = p_cell + phi_p * dot(grad_p, d);
+            v_node[p] =
+                v_cell + Vec3{phi_vx * dv_node[p].x, phi_vy * dv_node[p].y, phi_vz * dv_node[p].z};
+            p_node[p] = p_cell + phi_p * dp_node[p];
           }
         } else {
           for (int p = 0; p < 8; ++p) {

@@ -54,8 +54,14 @@ struct VertexExcursion {
 KOKKOS_INLINE_FUNCTION double cellLimiter(const VertexExcursion& excursion, double center,
                                           const Bounds& bounds, double beta) {
   double limiter = beta;
-  if (excursion.rise > 0.0) limiter = math::fmin(limiter, (bounds.hi - center) / excursion.rise);
-  if (excursion.fall < 0.0) limiter = math::fmin(limiter, (bounds.lo - center) / excursion.fall);
+  if (excursion.rise > 0.0) {
+    const double ratio = (bounds.hi - center) / excursion.rise;
+    limiter = ratio < limiter ? ratio : limiter;
+  }
+  if (excursion.fall < 0.0) {
+    const double ratio = (bounds.lo - center) / excursion.fall;
+    limiter = ratio < limiter ? ratio : limiter;
+  }
   return limiter;
 }
 

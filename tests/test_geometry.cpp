@@ -94,6 +94,25 @@ TEST(Geometry, FusedCellGeometryMatchesTheReferenceFormulas) {
     EXPECT_NEAR(geo.shape.max_face_area, shape.max_face_area, 1e-14);
     // the fused sweep works relative to node 0, the reference in absolute coordinates
     for (int p = 0; p < 8; ++p) EXPECT_LT(norm(geo.corner[p] - corner[p]), 1e-14);
+    // impedance sums over each corner's 3 corner faces, from the per-face vectors
+    SymMat3 normal_moment[8];
+    double corner_face_area[8] = {};
+    for (int p = 0; p < 8; ++p) normal_moment[p] = identitySym(0.0);
+    for (int f = 0; f < 6; ++f) {
+      Vec3 q[4], w[4];
+      hex::faceNodes(x, f, q);
+      hex::faceCornerVectors(q, w);
+      for (int k = 0; k < 4; ++k) {
+        const int p = hex::faceNode(f, k);
+        normal_moment[p] += outerSelf(w[k], 1.0 / norm(w[k]));
+        corner_face_area[p] += norm(w[k]);
+      }
+    }
+    for (int p = 0; p < 8; ++p) {
+      EXPECT_NEAR(geo.corner_face_area[p], corner_face_area[p], 1e-14);
+      const SymMat3 d = geo.normal_moment[p] - normal_moment[p];
+      EXPECT_LT(std::sqrt(ddot(d, d)), 1e-14);
+    }
   }
 }
 
