@@ -94,6 +94,26 @@ Mesh buildBlockMesh(const BlockSpec& spec, const SideBoundaries& boundaries) {
         }
       }
 
+  // --- the neighbour's face holding the same 4 nodes, found by search so it
+  // holds for any cell orientation, not only the block's lo/hi pairing.
+  Kokkos::View<Index* [6], HostSpace> neighbor_face_host("lagremap::mesh::cell_neighbor_face",
+                                                         mesh.n_cells);
+  for (Index c = 0; c < mesh.n_cells; ++c)
+    for (int f = 0; f < 6; ++f) {
+      const Index n = neighbors_host(c, f);
+      neighbor_face_host(c, f) = -1;
+      for (int g = 0; n >= 0 && g < 6 && neighbor_face_host(c, f) < 0; ++g) {
+        int shared = 0;
+        for (int k = 0; k < 4; ++k)
+          for (int j = 0; j < 4; ++j)
+            shared += nodes_host(c, hex::faceNode(f, k)) == nodes_host(n, hex::faceNode(g, j));
+        if (shared == 4) neighbor_face_host(c, f) = g;
+      }
+      if (n >= 0 && neighbor_face_host(c, f) < 0) {
+        throw std::logic_error("cell neighbours share no face");
+      }
+    }
+
   // --- node -> corner CRS, in corner-id order (deterministic gathers).
   std::vector<Index> corner_offsets(mesh.n_nodes + 1, 0);
   for (Index c = 0; c < mesh.n_cells; ++c)
@@ -179,6 +199,7 @@ Mesh buildBlockMesh(const BlockSpec& spec, const SideBoundaries& boundaries) {
   upload(nodes_host, mesh.cell_nodes);
   upload(neighbors_host, mesh.cell_neighbors);
   upload(side_host, mesh.cell_face_side);
+  upload(neighbor_face_host, mesh.cell_neighbor_face);
   upload(constrained_host, mesh.node_constrained);
   upload(projector_host, mesh.node_projector);
   mesh.node_corner_offsets = uploadList("lagremap::mesh::node_corner_offsets", corner_offsets);

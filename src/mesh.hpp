@@ -28,6 +28,9 @@ struct Mesh {
   CellNodesView cell_nodes;      // 8 nodes per cell, VTK_HEXAHEDRON order
   CellFacesView cell_neighbors;  // neighbour across each face, -1 on the boundary
   CellFacesView cell_face_side;  // box side of a boundary face, -1 for interior faces
+  // The neighbour's local face that is face f of the cell, -1 on the boundary: both
+  // sides of an interior face find the same swept triangles (remap, DESIGN §5).
+  CellFacesView cell_neighbor_face;
 
   // node -> corner CRS; corner id = 8 * cell + local node. Sorted by corner id,
   // so every node sum is taken in the same order whatever the thread count.
