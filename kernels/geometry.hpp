@@ -20,6 +20,58 @@ KOKKOS_INLINE_FUNCTION void gatherCellNodes(const CellNodesView& cell_nodes, con
   for (int p = 0; p < 8; ++p) x[p] = loadVec3(x_n, cell_nodes(c, p));
 }
 
+// Mixture closure of one cell (DESIGN §3): each present material's density
+// rho^k = m^k / (alpha^k v), pressure, sound speeds and deviator, combined into
+//   p = sum alpha^k p^k,  S = sum alpha^k S^k,
+//   aL^2 = sum (m^k/m) aL_k^2,  aT^2 = sum (m^k/m) aT_k^2,
+// with aT_k^2 = mu_k / rho^k and aL_k^2 = a_k^2 + 4/3 aT_k^2 for a solid,
+// aL_k = a_k and aT_k = 0 for a fluid. A pure cell's material energy is the
+// cell's e = E - |V|^2/2 itself (no round-off drift between the two).
+struct CellThermo {
+  double pressure = 0.0, aL2 = 0.0, aT2 = 0.0;
+  double min_sound_speed2 = 1e300;  // smallest a_k^2 of the present materials (<= 0: invalid)
+  bool valid = true;                // some material present, every one inside its EOS's domain
+};
+
+KOKKOS_INLINE_FUNCTION CellThermo cellThermo(const State& s, Index c, double volume,
+                                             double e_cell) {
+  CellThermo mix;
+  int present = 0;
+  for (int k = 0; k < s.n_materials; ++k) present += s.alpha_ck(c, k) > 0.0;
+  const double inv_mass = 1.0 / s.m_c(c);
+  mix.valid = present > 0;
+  SymMat3 deviator = identitySym(0.0);
+  for (int k = 0; k < s.n_materials; ++k) {
+    const double alpha = s.alpha_ck(c, k);
+    if (!(alpha > 0.0)) continue;
+    const MaterialParams& material = s.materials(k);
+    const double mass = s.m_ck(c, k);
+    const double rho = mass / (alpha * volume);
+    const double e = present == 1 ? e_cell : s.e_ck(c, k);
+    const ThermoState thermo = evaluateEos(material, rho, e);
+    const double mu = shearModulus(material);
+    const double aT2 = mu > 0.0 ? transverseSoundSpeed2(mu, rho) : 0.0;
+    const double mass_fraction = present == 1 ? 1.0 : mass * inv_mass;
+    mix.pressure += alpha * thermo.pressure;
+    mix.aL2 += mass_fraction * (thermo.sound_speed2 + (4.0 / 3.0) * aT2);
+    mix.aT2 += mass_fraction * aT2;
+    mix.valid = mix.valid && thermo.valid;
+    mix.min_sound_speed2 =
+        thermo.sound_speed2 < mix.min_sound_speed2 ? thermo.sound_speed2 : mix.min_sound_speed2;
+    s.p_ck(c, k) = thermo.pressure;
+    if (material.strength == StrengthKind::NeoHookean) {
+      // Hyper-elastic deviator from B (DESIGN §4), J = rho0 / rho^k.
+      const SymMat3 S = neoHookeanDeviator(loadSym(s.B_ck, c, k), material.rho0 / rho, mu);
+      storeSym(s.S_ck, c, k, S);
+      deviator += alpha * S;
+    } else if (material.strength == StrengthKind::HypoElastic) {
+      deviator += alpha * loadSym(s.S_ck, c, k);
+    }
+  }
+  if (s.has_solids) storeSym(s.S_c, c, deviator);
+  return mix;
+}
+
 // Geometry, thermodynamic closure and corner impedance of one cell, and its
 // time-step candidates folded into `best` (DESIGN §2-3).
 KOKKOS_INLINE_FUNCTION void cellGeometryAndThermo(const CellNodesView& cell_nodes,
@@ -39,18 +91,9 @@ KOKKOS_INLINE_FUNCTION void cellGeometryAndThermo(const CellNodesView& cell_node
   const Vec3 v = loadVec3(s.v_c, c);
   const double rho = s.m_c(c) / volume;
   const double e = s.E_c(c) - 0.5 * dot(v, v);
-  const MaterialParams& material = s.materials(s.mat_c(c));
-  const ThermoState thermo = evaluateEos(material, rho, e);
-  // Solids: aT^2 = mu / rho, aL^2 = a^2 + 4/3 aT^2 (DESIGN §3); fluids: aT = 0.
-  const double mu = shearModulus(material);
-  const double aT2 = mu > 0.0 ? transverseSoundSpeed2(mu, rho) : 0.0;
-  const double aL2 = thermo.sound_speed2 + (4.0 / 3.0) * aT2;
-  const double aL = aL2 > 0.0 ? math::sqrt(aL2) : 0.0;
-  const double aT = math::sqrt(aT2);
-  if (material.strength == StrengthKind::NeoHookean) {
-    // Hyper-elastic deviator from B (DESIGN §4), J = rho0 / rho.
-    storeSym(s.S_c, c, neoHookeanDeviator(loadSym(s.B_c, c), material.rho0 / rho, mu));
-  }
+  const CellThermo thermo = cellThermo(s, c, volume, e);
+  const double aL = thermo.aL2 > 0.0 ? math::sqrt(thermo.aL2) : 0.0;
+  const double aT = math::sqrt(thermo.aT2);
   s.rho_c(c) = rho;
   s.e_c(c) = e;
   s.p_c(c) = thermo.pressure;
@@ -69,8 +112,8 @@ KOKKOS_INLINE_FUNCTION void cellGeometryAndThermo(const CellNodesView& cell_node
   const bool finite_state =
       math::isfinite(e) && math::isfinite(thermo.pressure) && math::isfinite(rho);
   cellStepLimit(best, controls, c, volume, length,
-                thermo.sound_speed2 > 0.0 ? aL2 : thermo.sound_speed2, s.dvdt_c(c), finite_state,
-                thermo.valid);
+                thermo.min_sound_speed2 > 0.0 ? thermo.aL2 : thermo.min_sound_speed2, s.dvdt_c(c),
+                finite_state, thermo.valid);
 }
 
 // Returns the smallest time-step candidate (or a negative value and the

@@ -227,4 +227,19 @@ KOKKOS_INLINE_FUNCTION void storeSym(const View& v, int i, const SymMat3& a) {
   v(i, 5) = a.xz;
 }
 
+// Per-material tensors: entity i, material k.
+template <class View>
+KOKKOS_INLINE_FUNCTION SymMat3 loadSym(const View& v, int i, int k) {
+  return {v(i, k, 0), v(i, k, 1), v(i, k, 2), v(i, k, 3), v(i, k, 4), v(i, k, 5)};
+}
+template <class View>
+KOKKOS_INLINE_FUNCTION void storeSym(const View& v, int i, int k, const SymMat3& a) {
+  v(i, k, 0) = a.xx;
+  v(i, k, 1) = a.yy;
+  v(i, k, 2) = a.zz;
+  v(i, k, 3) = a.xy;
+  v(i, k, 4) = a.yz;
+  v(i, k, 5) = a.xz;
+}
+
 }  // namespace lagremap

@@ -64,7 +64,7 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
       Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells), KOKKOS_LAMBDA(const Index c) {
         const Vec3 v_cell = loadVec3(s.v_c, c);
         const double p_cell = s.p_c(c);
-        const bool solid = s.materials(s.mat_c(c)).strength != StrengthKind::None;
+        const bool solid = s.aT_c(c) > 0.0;  // some material with strength in the cell
 
         // --- reconstruction of V and p at the cell's nodes (DESIGN §3, second order)
         Vec3 v_node[8];
@@ -248,6 +248,105 @@ inline void nodalSolve(const Mesh& mesh, const State& state, const CornerControl
       });
 }
 
+// Velocity gradient of the stage, L = (1/v) sum_p V_p (x) A_cp (DESIGN §4).
+KOKKOS_INLINE_FUNCTION Mat3 velocityGradient(const CellNodesView& cell_nodes, const State& s,
+                                             Index c) {
+  Mat3 gradient = zeroMat();
+  const double inv_volume = 1.0 / s.vol_c(c);
+  for (int p = 0; p < 8; ++p) {
+    addOuter(gradient, inv_volume, loadVec3(s.v_n, cell_nodes(c, p)), loadVec3(s.A_cp, 8 * c + p));
+  }
+  return gradient;
+}
+
+// sigma^k : L = -p^k tr(L) + S^k : L, the power per unit volume of material k's
+// stress (pressure and deviator of the stage start).
+KOKKOS_INLINE_FUNCTION double stressPower(const State& s, Index c, int k, const Mat3& L) {
+  double power = -s.p_ck(c, k) * (L.m[0][0] + L.m[1][1] + L.m[2][2]);
+  if (s.materials(k).strength != StrengthKind::None) {
+    const SymMat3 S = loadSym(s.S_ck, c, k);
+    power += S.xx * L.m[0][0] + S.yy * L.m[1][1] + S.zz * L.m[2][2] +
+             S.xy * (L.m[0][1] + L.m[1][0]) + S.yz * (L.m[1][2] + L.m[2][1]) +
+             S.xz * (L.m[0][2] + L.m[2][0]);
+  }
+  return power;
+}
+
+// Incremental deformation gradient over the stage, exact for affine motion
+// (DESIGN §4): F = (1/v^n) sum_p x_p^new (x) A_cp^n, with the geometry of the
+// start of the step recomputed from x_n0.
+KOKKOS_INLINE_FUNCTION Mat3 stageDeformation(const CellNodesView& cell_nodes, const Vec3View& x_n,
+                                             const State& s, Index c) {
+  Vec3 x_start[8], corner_start[8];
+  for (int p = 0; p < 8; ++p) x_start[p] = loadVec3(s.x_n0, cell_nodes(c, p));
+  hex::cornerVectors(x_start, corner_start);
+  double volume_start = 0.0;  // Euler's theorem for the cubic volume
+  for (int p = 0; p < 8; ++p) volume_start += dot(x_start[p] - x_start[0], corner_start[p]);
+  volume_start /= 3.0;
+  Mat3 deformation = zeroMat();
+  for (int p = 0; p < 8; ++p) {
+    // relative to node 0 (sum_p A_cp = 0), to keep round-off small
+    addOuter(deformation, 1.0 / volume_start,
+             loadVec3(x_n, cell_nodes(c, p)) - loadVec3(x_n, cell_nodes(c, 0)), corner_start[p]);
+  }
+  return deformation;
+}
+
+// The materials of one cell over the stage (DESIGN §3-4), given the cell's new
+// specific internal energy e_new = E - |V|^2/2:
+// - internal energies: a pure cell's material takes e_new; in a mixed cell,
+//   with W^k = dt alpha^k sigma^k : L (sigma^k of the stage start) and the
+//   dissipation D = m (e_new - e^n) - sum_k W^k,
+//   m^k (e^k - e^k,n) = W^k + alpha^k D, which sums to the cell's change;
+// - hypo-elastic deviators: objective Jaumann update of S^k with L, then
+//   radial return (the plastic work is already in the total energy, so e
+//   receives it without an extra term);
+// - Neo-Hookean B^k = F B^k,n F^T (SPD kept).
+KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, const Vec3View& x_n,
+                                            const State& s, double dt_stage, Index c,
+                                            double e_new) {
+  int present = 0, last = 0;
+  for (int k = 0; k < s.n_materials; ++k) {
+    if (s.alpha_ck(c, k) > 0.0) {
+      ++present;
+      last = k;
+    }
+  }
+  const bool mixed = present > 1;
+  if (!mixed) s.e_ck(c, last) = e_new;
+  if (!mixed && !s.has_solids) return;
+  const Mat3 gradient = velocityGradient(cell_nodes, s, c);
+  double dissipation = 0.0;
+  if (mixed) {
+    const Vec3 v0 = loadVec3(s.v_c0, c);
+    dissipation = s.m_c(c) * (e_new - (s.E_c0(c) - 0.5 * dot(v0, v0)));
+    for (int k = 0; k < s.n_materials; ++k) {
+      const double alpha = s.alpha_ck(c, k);
+      if (!(alpha > 0.0)) continue;
+      dissipation -= dt_stage * alpha * stressPower(s, c, k, gradient);
+    }
+  }
+  bool deformation_known = false;
+  Mat3 deformation = zeroMat();
+  for (int k = 0; k < s.n_materials; ++k) {
+    const double alpha = s.alpha_ck(c, k);
+    if (!(alpha > 0.0)) continue;
+    if (mixed) {
+      const double work = dt_stage * alpha * stressPower(s, c, k, gradient);
+      s.e_ck(c, k) = s.e_ck0(c, k) + (work + alpha * dissipation) / s.m_ck(c, k);
+    }
+    const MaterialParams& material = s.materials(k);
+    if (material.strength == StrengthKind::HypoElastic) {
+      const SymMat3 trial = jaumannUpdate(loadSym(s.S_ck0, c, k), gradient, material.mu, dt_stage);
+      storeSym(s.S_ck, c, k, radialReturn(trial, material.yield_stress).S);
+    } else if (material.strength == StrengthKind::NeoHookean) {
+      if (!deformation_known) deformation = stageDeformation(cell_nodes, x_n, s, c);
+      deformation_known = true;
+      storeSym(s.B_ck, c, k, pushForward(deformation, loadSym(s.B_ck0, c, k)));
+    }
+  }
+}
+
 // Corner forces and the update of one cell from the start-of-step state
 // (DESIGN §3): F_cp = M_cp V_p - B_cp,
 //   m_c dV_c/dt = sum_p F_cp,  m_c dE_c/dt = sum_p F_cp . V_p,
@@ -265,42 +364,12 @@ KOKKOS_INLINE_FUNCTION void updateCell(const CellNodesView& cell_nodes, const Ve
     dvdt += dot(loadVec3(s.A_cp, corner), v_node);
   }
   const double dt_over_m = dt_stage / s.m_c(c);
-  storeVec3(s.v_c, c, loadVec3(s.v_c0, c) + dt_over_m * force);
-  s.E_c(c) = s.E_c0(c) + dt_over_m * power;
+  const Vec3 velocity = loadVec3(s.v_c0, c) + dt_over_m * force;
+  const double total_energy = s.E_c0(c) + dt_over_m * power;
+  storeVec3(s.v_c, c, velocity);
+  s.E_c(c) = total_energy;
   s.dvdt_c(c) = dvdt;
-
-  // Hypo-elastic solids (DESIGN §4): objective update of S with the discrete
-  // velocity gradient L = (1/v) sum_p V_p (x) A_cp of this stage, then radial
-  // return. The plastic work needs no extra term: the total energy update
-  // above already holds the work of sigma = -p I + S, so e = E - |V|^2/2
-  // receives it.
-  const MaterialParams& material = s.materials(s.mat_c(c));
-  if (material.strength == StrengthKind::HypoElastic) {
-    Mat3 gradient = zeroMat();
-    for (int p = 0; p < 8; ++p) {
-      addOuter(gradient, 1.0 / s.vol_c(c), loadVec3(s.v_n, cell_nodes(c, p)),
-               loadVec3(s.A_cp, 8 * c + p));
-    }
-    const SymMat3 trial = jaumannUpdate(loadSym(s.S_c0, c), gradient, material.mu, dt_stage);
-    storeSym(s.S_c, c, radialReturn(trial, material.yield_stress).S);
-  } else if (material.strength == StrengthKind::NeoHookean) {
-    // Incremental deformation gradient over the stage, exact for affine motion
-    // (DESIGN §4): F = (1/v^n) sum_p x_p^new (x) A_cp^n, with the geometry of the
-    // start of the step recomputed from x_n0; then B = F B^n F^T (SPD kept).
-    Vec3 x_start[8], corner_start[8];
-    for (int p = 0; p < 8; ++p) x_start[p] = loadVec3(s.x_n0, cell_nodes(c, p));
-    hex::cornerVectors(x_start, corner_start);
-    double volume_start = 0.0;  // Euler's theorem for the cubic volume
-    for (int p = 0; p < 8; ++p) volume_start += dot(x_start[p] - x_start[0], corner_start[p]);
-    volume_start /= 3.0;
-    Mat3 deformation = zeroMat();
-    for (int p = 0; p < 8; ++p) {
-      // relative to node 0 (sum_p A_cp = 0), to keep round-off small
-      addOuter(deformation, 1.0 / volume_start,
-               loadVec3(x_n, cell_nodes(c, p)) - loadVec3(x_n, cell_nodes(c, 0)), corner_start[p]);
-    }
-    storeSym(s.B_c, c, pushForward(deformation, loadSym(s.B_c0, c)));
-  }
+  updateMaterials(cell_nodes, x_n, s, dt_stage, c, total_energy - 0.5 * dot(velocity, velocity));
 }
 
 inline void updateCells(const Mesh& mesh, const State& state, double dt_stage) {

@@ -28,12 +28,7 @@ std::string describeInvalidCell(const StepLimit& limit, long step, const char* w
 }
 
 LagrangeStep::LagrangeStep(Mesh& mesh, State& state, const Numerics& numerics, PhaseTimers& timers)
-    : mesh_(mesh), state_(state), has_solids_(false), numerics_(numerics), timers_(timers) {
-  const auto materials = Kokkos::create_mirror_view_and_copy(HostSpace(), state.materials);
-  for (std::size_t k = 0; k < materials.extent(0); ++k) {
-    has_solids_ = has_solids_ || materials(k).strength != StrengthKind::None;
-  }
-}
+    : mesh_(mesh), state_(state), numerics_(numerics), timers_(timers) {}
 
 StepLimit LagrangeStep::computeGeometry() {
   auto scope = timers_.scope(Phase::Geometry);
@@ -68,9 +63,10 @@ void LagrangeStep::saveStartOfStep() {
   Kokkos::deep_copy(state_.x_n0, mesh_.x_n);
   Kokkos::deep_copy(state_.v_c0, state_.v_c);
   Kokkos::deep_copy(state_.E_c0, state_.E_c);
-  if (has_solids_) {  // fluids-only runs have no deviator or B to carry
-    Kokkos::deep_copy(state_.S_c0, state_.S_c);
-    Kokkos::deep_copy(state_.B_c0, state_.B_c);
+  Kokkos::deep_copy(state_.e_ck0, state_.e_ck);
+  if (state_.has_solids) {  // fluids-only runs have no deviator or B to carry
+    Kokkos::deep_copy(state_.S_ck0, state_.S_ck);
+    Kokkos::deep_copy(state_.B_ck0, state_.B_ck);
   }
 }
 
@@ -78,9 +74,10 @@ void LagrangeStep::restoreStartOfStep() {
   Kokkos::deep_copy(mesh_.x_n, state_.x_n0);
   Kokkos::deep_copy(state_.v_c, state_.v_c0);
   Kokkos::deep_copy(state_.E_c, state_.E_c0);
-  if (has_solids_) {
-    Kokkos::deep_copy(state_.S_c, state_.S_c0);
-    Kokkos::deep_copy(state_.B_c, state_.B_c0);
+  Kokkos::deep_copy(state_.e_ck, state_.e_ck0);
+  if (state_.has_solids) {
+    Kokkos::deep_copy(state_.S_ck, state_.S_ck0);
+    Kokkos::deep_copy(state_.B_ck, state_.B_ck0);
   }
   computeGeometry();
 }

@@ -57,7 +57,6 @@ class LagrangeStep {
 
   Mesh& mesh_;
   State& state_;
-  bool has_solids_;  // any material with strength: S and B are part of the state
   Numerics numerics_;
   PhaseTimers& timers_;
 };

@@ -19,11 +19,16 @@ struct Check {
   bool pass() const;
 };
 
-// Initial cell state, host side, one entry per cell.
+// Initial cell state, host side, one entry per cell: a pure cell of material
+// `mat` at (rho, e), unless the mixed-cell arrays are given.
 struct InitialCells {
   std::vector<double> rho, e;  // density, specific internal energy
   std::vector<Vec3> v;         // velocity
   std::vector<int> mat;        // material index into ProblemSetup::materials
+  // Optional mixed cells, n_cells x n_materials (cell-major): volume fraction,
+  // material density and specific internal energy; when given they replace
+  // rho, e and mat (DESIGN §3: m^k = alpha^k rho^k v).
+  std::vector<double> alpha_k, rho_k, e_k;
 };
 
 struct ProblemSetup {
@@ -39,7 +44,8 @@ struct FinalFields {
   HostMesh mesh;
   RealView::HostMirror rho, p, e, vol;
   Vec3View::HostMirror v, x_c;
-  Sym6View::HostMirror S;  // deviatoric stress
+  Sym6View::HostMirror S;         // deviatoric stress (mixture)
+  MatRealView::HostMirror alpha;  // volume fraction of each material
   // The problem's probe after every step: (t, value), first entry at t = 0.
   std::vector<std::pair<double, double>> probe;
 };

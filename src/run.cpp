@@ -58,6 +58,7 @@ FinalFields copyFields(const ProblemSetup& setup, const State& state, double tim
   fields.v = Kokkos::create_mirror_view_and_copy(HostSpace(), state.v_c);
   fields.x_c = Kokkos::create_mirror_view_and_copy(HostSpace(), state.x_c);
   fields.S = Kokkos::create_mirror_view_and_copy(HostSpace(), state.S_c);
+  fields.alpha = Kokkos::create_mirror_view_and_copy(HostSpace(), state.alpha_ck);
   return fields;
 }
 
@@ -75,13 +76,21 @@ void writeSnapshot(io::SnapshotSeries& series, const FinalFields& fields) {
     for (int k = 0; k < 6; ++k) deviator[6 * std::size_t(c) + k] = fields.S(c, k);
   }
   const io::SnapshotMesh mesh{n_nodes, xyz.data(), n_cells, connectivity.data()};
-  series.write(fields.time, mesh,
-               {{"density", fields.rho.data(), 1},
-                {"pressure", fields.p.data(), 1},
-                {"internal_energy", fields.e.data(), 1},
-                {"volume", fields.vol.data(), 1},
-                {"velocity", velocity.data(), 3},
-                {"deviatoric_stress", deviator.data(), 6}});
+  std::vector<io::CellField> cell_fields = {
+      {"density", fields.rho.data(), 1},       {"pressure", fields.p.data(), 1},
+      {"internal_energy", fields.e.data(), 1}, {"volume", fields.vol.data(), 1},
+      {"velocity", velocity.data(), 3},        {"deviatoric_stress", deviator.data(), 6}};
+  // Volume fractions of multi-material problems, one field per material.
+  const int n_materials = int(fields.alpha.extent(1));
+  std::vector<std::vector<double>> fractions;
+  if (n_materials > 1) {
+    fractions.assign(std::size_t(n_materials), std::vector<double>(std::size_t(n_cells)));
+    for (int k = 0; k < n_materials; ++k) {
+      for (Index c = 0; c < n_cells; ++c) fractions[k][c] = fields.alpha(c, k);
+      cell_fields.push_back({"volume_fraction_" + std::to_string(k), fractions[k].data(), 1});
+    }
+  }
+  series.write(fields.time, mesh, cell_fields);
 }
 
 // A mesh that cannot fit in memory is bad input, said before anything is
@@ -144,43 +153,86 @@ Numerics readNumerics(const Config& config) {
   return numerics;
 }
 
-// Uploads the problem's initial cells: m = rho v (v from the same geometry
-// kernel the run uses), E = e + |V|^2 / 2.
+// Uploads the problem's initial cells and allocates the per-material state:
+// m^k = alpha^k rho^k v (v from the same geometry kernel the run uses),
+// m = sum m^k, m e = sum m^k e^k, E = e + |V|^2 / 2; undeformed solids
+// (S = 0, B = I).
 void initializeState(const ProblemSetup& setup, State& state) {
   const Index n_cells = setup.mesh.n_cells;
+  const int n_materials = int(setup.materials.size());
   const InitialCells& cells = setup.cells;
-  if (Index(cells.rho.size()) != n_cells || Index(cells.e.size()) != n_cells ||
-      Index(cells.v.size()) != n_cells || Index(cells.mat.size()) != n_cells) {
+  const bool mixed = !cells.alpha_k.empty();
+  const std::size_t n_entries = std::size_t(n_cells) * std::size_t(n_materials);
+  const bool sizes_ok =
+      Index(cells.v.size()) == n_cells &&
+      (mixed ? cells.alpha_k.size() == n_entries && cells.rho_k.size() == n_entries &&
+                   cells.e_k.size() == n_entries
+             : Index(cells.rho.size()) == n_cells && Index(cells.e.size()) == n_cells &&
+                   Index(cells.mat.size()) == n_cells);
+  if (n_materials < 1 || !sizes_ok) {
     throw std::logic_error("problem set-up gave initial data of the wrong size");
   }
+  bool has_solids = false;
+  for (const MaterialParams& material : setup.materials) {
+    has_solids = has_solids || material.strength != StrengthKind::None;
+  }
+  allocateMaterialState(state, n_cells, n_materials, has_solids);
+
   std::vector<double> volume;
   std::vector<Vec3> centroid;
   hostCellShapes(copyToHost(setup.mesh), volume, centroid);
   auto m_host = Kokkos::create_mirror_view(state.m_c);
   auto v_host = Kokkos::create_mirror_view(state.v_c);
   auto E_host = Kokkos::create_mirror_view(state.E_c);
-  auto mat_host = Kokkos::create_mirror_view(state.mat_c);
+  auto alpha_host = Kokkos::create_mirror_view(state.alpha_ck);
+  auto m_k_host = Kokkos::create_mirror_view(state.m_ck);
+  auto e_k_host = Kokkos::create_mirror_view(state.e_ck);
+  Kokkos::deep_copy(alpha_host, 0.0);
+  Kokkos::deep_copy(m_k_host, 0.0);
+  Kokkos::deep_copy(e_k_host, 0.0);
   for (Index c = 0; c < n_cells; ++c) {
-    if (!(cells.rho[c] > 0.0) || !(volume[c] > 0.0)) {
-      throw ConfigError("initial state: cell " + std::to_string(c) +
-                        " has a non-positive density or volume");
+    const std::string where = "initial state: cell " + std::to_string(c);
+    if (!(volume[c] > 0.0)) throw ConfigError(where + " has a non-positive volume");
+    double mass = 0.0, internal_energy = 0.0, alpha_sum = 0.0;
+    for (int k = 0; k < n_materials; ++k) {
+      const std::size_t i = std::size_t(c) * std::size_t(n_materials) + std::size_t(k);
+      const double alpha = mixed ? cells.alpha_k[i] : double(cells.mat[c] == k);
+      if (!(alpha >= 0.0 && alpha <= 1.0)) {
+        throw ConfigError(where + " has a volume fraction outside [0, 1]");
+      }
+      if (alpha == 0.0) continue;
+      const double rho = mixed ? cells.rho_k[i] : cells.rho[c];
+      const double e = mixed ? cells.e_k[i] : cells.e[c];
+      if (!(rho > 0.0)) throw ConfigError(where + " has a non-positive density");
+      alpha_host(c, k) = alpha;
+      m_k_host(c, k) = alpha * rho * volume[c];
+      e_k_host(c, k) = e;
+      alpha_sum += alpha;
+      mass += m_k_host(c, k);
+      internal_energy += m_k_host(c, k) * e;
     }
-    if (cells.mat[c] < 0 || cells.mat[c] >= int(setup.materials.size())) {
+    if (!mixed && (cells.mat[c] < 0 || cells.mat[c] >= n_materials)) {
       throw std::logic_error("problem set-up gave an unknown material index");
     }
-    m_host(c) = cells.rho[c] * volume[c];
+    if (!(std::fabs(alpha_sum - 1.0) <= 1e-12)) {
+      throw ConfigError(where + " has volume fractions that do not sum to 1");
+    }
+    m_host(c) = mass;
     storeVec3(v_host, c, cells.v[c]);
-    E_host(c) = cells.e[c] + 0.5 * dot(cells.v[c], cells.v[c]);
-    mat_host(c) = cells.mat[c];
+    E_host(c) = internal_energy / mass + 0.5 * dot(cells.v[c], cells.v[c]);
   }
   Kokkos::deep_copy(state.m_c, m_host);
   Kokkos::deep_copy(state.v_c, v_host);
   Kokkos::deep_copy(state.E_c, E_host);
-  Kokkos::deep_copy(state.mat_c, mat_host);
-  // Undeformed solids: B = I (S = 0 from the zero-initialised View).
-  auto B_host = Kokkos::create_mirror_view(state.B_c);
-  for (Index c = 0; c < n_cells; ++c) storeSym(B_host, c, identitySym());
-  Kokkos::deep_copy(state.B_c, B_host);
+  Kokkos::deep_copy(state.alpha_ck, alpha_host);
+  Kokkos::deep_copy(state.m_ck, m_k_host);
+  Kokkos::deep_copy(state.e_ck, e_k_host);
+  if (has_solids) {
+    auto B_host = Kokkos::create_mirror_view(state.B_ck);
+    for (Index c = 0; c < n_cells; ++c)
+      for (int k = 0; k < n_materials; ++k) storeSym(B_host, c, k, identitySym());
+    Kokkos::deep_copy(state.B_ck, B_host);
+  }
   state.materials = MaterialView("lagremap::state::materials", setup.materials.size());
   auto materials_host = Kokkos::create_mirror_view(state.materials);
   for (std::size_t k = 0; k < setup.materials.size(); ++k) materials_host(k) = setup.materials[k];

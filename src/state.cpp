@@ -14,11 +14,7 @@ State allocateState(const Mesh& mesh, bool with_atomics_gather) {
   s.m_c = cells("m_c");
   s.v_c = cells3("v_c");
   s.E_c = cells("E_c");
-  s.mat_c = DeviceView<int*>("lagremap::state::mat_c", nc);
   s.S_c = Sym6View("lagremap::state::S_c", nc);
-  s.S_c0 = Sym6View("lagremap::state::S_c0", nc);
-  s.B_c = Sym6View("lagremap::state::B_c", nc);
-  s.B_c0 = Sym6View("lagremap::state::B_c0", nc);
   s.vol_c = cells("vol_c");
   s.rho_c = cells("rho_c");
   s.e_c = cells("e_c");
@@ -42,6 +38,28 @@ State allocateState(const Mesh& mesh, bool with_atomics_gather) {
     s.B_n = Vec3View("lagremap::state::B_n", nn);
   }
   return s;
+}
+
+void allocateMaterialState(State& s, Index n_cells, int n_materials, bool has_solids) {
+  auto scalars = [&](const char* name) {
+    return MatRealView(std::string("lagremap::state::") + name, n_cells, n_materials);
+  };
+  // Tensors exist only when some material has strength: a gas run carries none.
+  const Index tensor_cells = has_solids ? n_cells : 0;
+  auto tensors = [&](const char* name) {
+    return MatSym6View(std::string("lagremap::state::") + name, tensor_cells, n_materials);
+  };
+  s.n_materials = n_materials;
+  s.has_solids = has_solids;
+  s.alpha_ck = scalars("alpha_ck");
+  s.m_ck = scalars("m_ck");
+  s.e_ck = scalars("e_ck");
+  s.e_ck0 = scalars("e_ck0");
+  s.p_ck = scalars("p_ck");
+  s.S_ck = tensors("S_ck");
+  s.S_ck0 = tensors("S_ck0");
+  s.B_ck = tensors("B_ck");
+  s.B_ck0 = tensors("B_ck0");
 }
 
 }  // namespace lagremap

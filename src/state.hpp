@@ -15,20 +15,33 @@ struct State {
   RealView m_c;
   Vec3View v_c;
   RealView E_c;
-  DeviceView<int*> mat_c;  // material of the cell
-  Sym6View S_c;            // deviatoric Cauchy stress (solids; 0 in fluids)
-  Sym6View B_c;            // left Cauchy-Green tensor (Neo-Hookean solids; I elsewhere)
   MaterialView materials;  // material table
 
-  // Derived at every stage from the node positions (computeGeometry).
+  // Per material k (DESIGN §3), allocated by initializeState once the table is
+  // known. A material is present in a cell when alpha > 0; a pure cell (one
+  // material) is the lagrange-mode case, mixed cells come with the remap.
+  int n_materials = 0;
+  bool has_solids = false;  // some material has strength: S and B are carried
+  MatRealView alpha_ck;     // volume fraction, constant in the Lagrangian phase (equal strain)
+  MatRealView m_ck;         // mass
+  MatRealView e_ck;         // specific internal energy
+  MatRealView p_ck;         // pressure (derived at every stage)
+  MatSym6View S_ck;         // deviator: evolved (hypo-elastic) or from B (Neo-Hookean)
+  MatSym6View B_ck;         // left Cauchy-Green tensor (Neo-Hookean; I elsewhere)
+
+  // Derived at every stage from the node positions (computeGeometry); the
+  // mixture rules of DESIGN §3 give p = sum alpha^k p^k, S = sum alpha^k S^k,
+  // aL^2 = sum (m^k/m) aL_k^2, aT^2 likewise.
   RealView vol_c, rho_c, e_c, p_c, aL_c, aT_c, len_c;
+  Sym6View S_c;     // mixture deviatoric Cauchy stress (0 in fluids)
   Vec3View x_c;     // true centroid
   RealView dvdt_c;  // dv/dt = sum_p A_cp . V_p of the last update (time-step control)
 
   // Start of step t^n: base of the predictor-corrector and the last good state.
   Vec3View x_n0, v_c0;
   RealView E_c0;
-  Sym6View S_c0, B_c0;
+  MatRealView e_ck0;
+  MatSym6View S_ck0, B_ck0;
 
   // Corner arrays, corner id = 8 c + local node.
   Vec3View A_cp;  // corner vector sum_f s_pf n_pf = d v_c / d x_p
@@ -44,7 +57,11 @@ struct State {
   Vec3View B_n;
 };
 
-// Allocates every field for the mesh (labels lagremap::state::<field>).
+// Allocates every cell, corner and node field for the mesh (labels
+// lagremap::state::<field>); the per-material ones come with the material table.
 State allocateState(const Mesh& mesh, bool with_atomics_gather);
+// Allocates the per-material fields for n_materials; the tensors only when
+// has_solids (a fluids-only run never touches them).
+void allocateMaterialState(State& state, Index n_cells, int n_materials, bool has_solids);
 
 }  // namespace lagremap

@@ -24,6 +24,8 @@ using Sym6View = DeviceView<Real* [6]>;        // xx, yy, zz, xy, yz, xz per ent
 using IndexView = DeviceView<Index*>;          // CRS offsets and lists
 using CellNodesView = DeviceView<Index* [8]>;  // VTK_HEXAHEDRON node order
 using CellFacesView = DeviceView<Index* [6]>;  // per hex face (see kernels/hex.hpp)
+using MatRealView = DeviceView<Real**>;        // (cell, material)
+using MatSym6View = DeviceView<Real** [6]>;    // (cell, material, Sym6 component)
 
 constexpr int kNodesPerCell = 8;
 constexpr int kFacesPerCell = 6;
