@@ -108,7 +108,15 @@ int runCommandLine(int argc, char* argv[]) {
     if (problem_name.empty()) return badInput("--problem is required (see --list)");
     const Problem& problem = findProblem(problem_name);
     options.problem = problem.name;
-    options.config = declareConfig(problem);
+    if (!input.empty() && app.count("--mode") == 0) {
+      Config::peekDeck(input, nullptr, &deck_mode);
+      if (!deck_mode.empty()) mode = deck_mode;
+      if (mode != "lagrange" && mode != "remap") {
+        return badInput("input deck '" + input + "': mode '" + mode +
+                        "' is not one of lagrange|remap");
+      }
+    }
+    options.config = declareConfig(problem, mode);
     if (!input.empty()) {
       options.config.loadDeck(input, &deck_problem, &deck_mode);
       if (!deck_problem.empty() && deck_problem != problem_name) {

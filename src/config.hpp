@@ -61,6 +61,12 @@ class Config {
   bool boolean(const std::string& key) const;
   const std::string& text(const std::string& key) const;
 
+  // The run mode the keys were declared for ("lagrange" or "remap"): problems
+  // choose their domain and defaults by it.
+  void setMode(const std::string& mode) { mode_ = mode; }
+  const std::string& mode() const { return mode_; }
+  bool remapMode() const { return mode_ == "remap"; }
+
   // All keys in order, for --print-config and summary.json.
   const std::map<std::string, Param>& params() const { return params_; }
   std::string printable() const;
@@ -69,6 +75,7 @@ class Config {
   const Param& get(const std::string& key) const;
   void add(Param param);
   std::map<std::string, Param> params_;
+  std::string mode_ = "lagrange";
 };
 
 }  // namespace lagremap

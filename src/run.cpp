@@ -16,6 +16,7 @@
 #include "io/snapshot_writer.hpp"
 #include "json.hpp"
 #include "lagrange_step.hpp"
+#include "remap_step.hpp"
 
 namespace lagremap {
 
@@ -25,9 +26,18 @@ bool RunResult::checksPass() const {
   return !failed;
 }
 
-Config declareConfig(const Problem& problem) {
+Config declareConfig(const Problem& problem, const std::string& mode) {
   Config config;
+  config.setMode(mode);
   problem.declare(config);
+  if (config.remapMode()) {
+    config.addReal(
+        "remap.beta", 2.0, "-",
+        "limiter parameter of the volume fractions (1: Barth-Jespersen, 2: compressive)");
+    config.addReal("remap.alpha_floor", 1e-10, "-",
+                   "volume fraction below which a material is dropped from a cell (mass and "
+                   "energy kept)");
+  }
   config.addChoice("numerics.order", "2", {"1", "2"},
                    "1: first order; 2: limited linear reconstruction + predictor-corrector");
   config.addReal("numerics.cfl", 0.4, "-", "CFL number C_cfl of dt <= C_cfl l_c / aL_c");
@@ -241,11 +251,14 @@ void initializeState(const ProblemSetup& setup, State& state) {
 
 RunResult runProblem(const RunOptions& options) {
   const Problem& problem = findProblem(options.problem);
-  if (options.mode != "lagrange") {
-    throw ConfigError("mode '" + options.mode +
-                      "' is not available in this version (known: lagrange)");
+  if (options.mode != "lagrange" && options.mode != "remap") {
+    throw ConfigError("unknown mode '" + options.mode + "' (known: lagrange, remap)");
   }
   const Config& config = options.config;
+  if (config.mode() != options.mode) {
+    throw std::logic_error("run options: the keys were declared for mode '" + config.mode() +
+                           "', not '" + options.mode + "'");
+  }
   const Numerics numerics = readNumerics(config);
   const double t_end = config.real("t_end");
   for (double t_out : options.output_times) {
@@ -273,6 +286,23 @@ RunResult runProblem(const RunOptions& options) {
     throw ConfigError("initial state is invalid: " + describeInvalidCell(limit, 0, "set-up"));
   }
   lagrange.saveStartOfStep();
+  std::unique_ptr<RemapStep> remap;
+  if (config.remapMode()) {
+    RemapControls controls;
+    controls.beta_alpha = config.real("remap.beta");
+    controls.alpha_floor = config.real("remap.alpha_floor");
+    if (!(controls.beta_alpha >= 1.0 && controls.beta_alpha <= 2.0)) {
+      throw ConfigError("remap.beta must be in [1, 2]");
+    }
+    if (!(controls.alpha_floor >= 0.0 && controls.alpha_floor < 0.5)) {
+      throw ConfigError("remap.alpha_floor must be in [0, 0.5)");
+    }
+    try {
+      remap = std::make_unique<RemapStep>(mesh, state, controls, timers);
+    } catch (const std::invalid_argument& error) {
+      throw ConfigError(options.problem + ": " + error.what());
+    }
+  }
 
   // --- outputs
   const std::string& dir = options.output_dir;
@@ -317,6 +347,7 @@ RunResult runProblem(const RunOptions& options) {
   result.cells = mesh.n_cells;
   Vec3 impulse{0, 0, 0};  // boundary impulse and work, for the conservation audit
   double work = 0.0;
+  double mass_in = 0.0;  // what the remap brought in through a moving outer boundary
   double t = 0.0, dt_prev = 0.0;
   long step = 0;
   const auto wall_start = std::chrono::steady_clock::now();
@@ -355,9 +386,18 @@ RunResult runProblem(const RunOptions& options) {
     }
     if (!result.failure.empty()) break;
 
+    RemapBoundaryFlux crossed;
     try {
       limit = lagrange.advance(dt, step + 1);  // and the next step's candidates
       if (limit.val < 0.0) throw RunFailure(describeInvalidCell(limit, step + 1, "end of step"));
+      if (remap) {  // back onto the initial mesh (DESIGN §5), then its time step
+        crossed = remap->apply();
+        limit = lagrange.computeGeometry();
+        if (limit.val < 0.0) {
+          remap->restoreStartOfStep();
+          throw RunFailure(describeInvalidCell(limit, step + 1, "after the remap"));
+        }
+      }
     } catch (const RunFailure& failure) {
       lagrange.restoreStartOfStep();
       result.failure = failure.what();
@@ -376,8 +416,9 @@ RunResult runProblem(const RunOptions& options) {
     {
       auto scope = timers.scope(Phase::Diagnostics);
       const BoundaryPower boundary = computeBoundaryPower(mesh, state);
-      impulse += dt * boundary.force;
-      work += dt * boundary.power;
+      impulse += dt * boundary.force + Vec3{crossed.v[1], crossed.v[2], crossed.v[3]};
+      work += dt * boundary.power + crossed.v[4];
+      mass_in += crossed.v[0];
       totals = computeTotals(mesh, state);
     }
     writeHistory(step, t, dt, reason, totals);
@@ -408,7 +449,7 @@ RunResult runProblem(const RunOptions& options) {
   const double energy_scale =
       std::max({std::abs(initial.total()), std::abs(totals.total()), std::abs(work), 1e-300});
   const double momentum_scale = std::max(std::sqrt(2.0 * initial.mass * energy_scale), 1e-300);
-  result.drift_mass = std::abs(totals.mass - initial.mass) / initial.mass;
+  result.drift_mass = std::abs(totals.mass - initial.mass - mass_in) / initial.mass;
   result.drift_momentum = norm(totals.momentum - initial.momentum - impulse) / momentum_scale;
   result.drift_energy = std::abs(totals.total() - initial.total() - work) / energy_scale;
 

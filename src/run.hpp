@@ -23,7 +23,7 @@ struct RunOptions {
 };
 
 // Every key a run has: the common numerics keys plus the problem's.
-Config declareConfig(const Problem& problem);
+Config declareConfig(const Problem& problem, const std::string& mode = "lagrange");
 
 struct RunResult {
   long steps = 0;

@@ -11,11 +11,20 @@
 
 namespace lagremap {
 
-enum class Phase : int { Geometry, Corners, NodalSolve, CellUpdate, Diagnostics, Output, Count };
+enum class Phase : int {
+  Geometry,
+  Corners,
+  NodalSolve,
+  CellUpdate,
+  Remap,
+  Diagnostics,
+  Output,
+  Count
+};
 
 inline const char* phaseName(Phase phase) {
-  static const char* names[] = {"geometry",    "corners",     "nodal_solve",
-                                "cell_update", "diagnostics", "output"};
+  static const char* names[] = {"geometry", "corners",     "nodal_solve", "cell_update",
+                                "remap",    "diagnostics", "output"};
   return names[int(phase)];
 }
 

@@ -1,0 +1,256 @@
+// Remap phase (DESIGN §5): the Lagrangian state is carried back onto the
+// initial mesh every step of `--mode remap`, in four kernels:
+//   remapDensities:  per cell, the remapped quantities per unit volume on the
+//                    Lagrangian cell: alpha^k, alpha^k rho^k, alpha^k rho^k e^k,
+//                    rho V, rho |V|^2/2 and alpha^k S^k / alpha^k B^k;
+//   remapGradients:  least-squares gradients on the Lagrangian mesh, limited
+//                    (Barth-Jespersen, beta = 1; volume fractions compressive,
+//                    beta = 2 by default);
+//   computeSweptFaces (swept_face.hpp): volume and first moment swept by
+//                    every face triangle between the two meshes;
+//   remapUpdate:     per cell, the upwind second-order flux through each of its
+//                    24 triangles, the new integrals, the clean-up of volume
+//                    fractions, the recovered state and the kinetic-energy fix.
+// Every cell computes the fluxes of its own 24 triangles. The swept regions of a
+// face are stored with exactly opposite signs on its two sides and the upwind
+// cell is chosen identically from both (ties at dV = 0 go to the lower cell
+// id), so the neighbour's flux is the exact negative of ours: every remapped
+// total is conserved to round-off without atomics, deterministically.
+#pragma once
+
+#include "../src/diagnostics.hpp"
+#include "../src/mesh.hpp"
+#include "../src/state.hpp"
+#include "reconstruction.hpp"
+#include "swept_face.hpp"
+
+namespace lagremap {
+
+constexpr int kMaxMaterials = 8;
+constexpr int kMaxRemapVariables = 3 * kMaxMaterials + 4 + 6 * kMaxMaterials;
+
+// Columns of the per-cell tables of remapped quantities.
+struct RemapLayout {
+  int n_materials = 0;
+  int n_variables = 0;
+  // First of the 6 tensor columns of material k (alpha^k S^k for a
+  // hypo-elastic material, alpha^k B^k for a Neo-Hookean one), -1 for a fluid.
+  Kokkos::Array<int, kMaxMaterials> tensor_column;
+
+  KOKKOS_INLINE_FUNCTION int alpha(int k) const { return k; }
+  KOKKOS_INLINE_FUNCTION int mass(int k) const { return n_materials + k; }
+  KOKKOS_INLINE_FUNCTION int energy(int k) const { return 2 * n_materials + k; }
+  KOKKOS_INLINE_FUNCTION int momentum(int d) const { return 3 * n_materials + d; }
+  KOKKOS_INLINE_FUNCTION int kinetic() const { return 3 * n_materials + 3; }
+};
+
+struct RemapControls {
+  double beta_alpha = 2.0;  // limiter parameter of the volume fractions (1: Barth-Jespersen)
+  // Below this volume fraction a material is dropped from the cell after the
+  // sweep (its mass and energy go to the cell's main material).
+  double alpha_floor = 1e-10;
+};
+
+// Quantities the outer boundary exchanged in the sweep (mass, momentum xyz,
+// total energy): zero for walls, which sweep no volume; a moving traction
+// face books here what crossed it (PROBLEMS.md, pile).
+using RemapBoundaryFlux = SumArray<5>;
+
+inline void remapDensities(const State& state, const RemapLayout& layout, const MatRealView& q) {
+  const auto s = state;
+  Kokkos::parallel_for(
+      "lagremap::remap::densities", Kokkos::RangePolicy<ExecSpace>(0, Index(s.m_c.extent(0))),
+      KOKKOS_LAMBDA(const Index c) {
+        const double inv_volume = 1.0 / s.vol_c(c);
+        for (int k = 0; k < layout.n_materials; ++k) {
+          const double alpha = s.alpha_ck(c, k);
+          const double mass = s.m_ck(c, k);
+          q(c, layout.alpha(k)) = alpha;
+          q(c, layout.mass(k)) = mass * inv_volume;
+          q(c, layout.energy(k)) = alpha > 0.0 ? mass * s.e_ck(c, k) * inv_volume : 0.0;
+          const int column = layout.tensor_column[k];
+          if (column < 0) continue;
+          const SymMat3 tensor = s.materials(k).strength == StrengthKind::NeoHookean
+                                     ? loadSym(s.B_ck, c, k)
+                                     : loadSym(s.S_ck, c, k);
+          const double t[6] = {tensor.xx, tensor.yy, tensor.zz, tensor.xy, tensor.yz, tensor.xz};
+          for (int i = 0; i < 6; ++i) q(c, column + i) = alpha * t[i];
+        }
+        const double mass = s.m_c(c);
+        const Vec3 v = loadVec3(s.v_c, c);
+        q(c, layout.momentum(0)) = mass * v.x * inv_volume;
+        q(c, layout.momentum(1)) = mass * v.y * inv_volume;
+        q(c, layout.momentum(2)) = mass * v.z * inv_volume;
+        q(c, layout.kinetic()) = 0.5 * mass * dot(v, v) * inv_volume;
+      });
+}
+
+// Limited least-squares gradients (DESIGN §5) on the Lagrangian mesh, stored
+// already multiplied by their limiter: psi(x) = psi_c + grad . (x - x_c).
+inline void remapGradients(const Mesh& mesh, const State& state, const RemapLayout& layout,
+                           const RemapControls& controls, const MatRealView& q,
+                           const DeviceView<Real** [3]>& gradient) {
+  const auto cell_nodes = mesh.cell_nodes;
+  const auto neighbors = mesh.cell_neighbors;
+  const auto x_n = mesh.x_n;
+  const auto x_c = state.x_c;
+  const double beta_alpha = controls.beta_alpha;
+  Kokkos::parallel_for(
+      "lagremap::remap::gradients", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
+      KOKKOS_LAMBDA(const Index c) {
+        const Vec3 centroid = loadVec3(x_c, c);
+        Index nb[6];
+        Vec3 offset[6];
+        LeastSquares lsq;
+        for (int f = 0; f < 6; ++f) {
+          nb[f] = neighbors(c, f);
+          if (nb[f] < 0) continue;  // no ghost: the gradient is one-sided at the boundary
+          offset[f] = loadVec3(x_c, nb[f]) - centroid;
+          lsq.addOffset(offset[f]);
+        }
+        const SymMat3 solver = lsq.solver();
+        Vec3 vertex[8];
+        for (int p = 0; p < 8; ++p) vertex[p] = loadVec3(x_n, cell_nodes(c, p)) - centroid;
+        for (int v = 0; v < layout.n_variables; ++v) {
+          const double center = q(c, v);
+          Bounds bounds(center);
+          Vec3 rhs{0.0, 0.0, 0.0};
+          for (int f = 0; f < 6; ++f) {
+            if (nb[f] < 0) continue;
+            const double value = q(nb[f], v);
+            rhs += (value - center) * offset[f];
+            bounds.include(value);
+          }
+          const Vec3 grad = solver * rhs;
+          VertexExcursion excursion;
+          for (int p = 0; p < 8; ++p) excursion.include(dot(grad, vertex[p]));
+          const double beta = v < layout.n_materials ? beta_alpha : 1.0;
+          const double limiter = cellLimiter(excursion, center, bounds, beta);
+          gradient(c, v, 0) = limiter * grad.x;
+          gradient(c, v, 1) = limiter * grad.y;
+          gradient(c, v, 2) = limiter * grad.z;
+        }
+      });
+}
+
+// Sum of the upwind fluxes through the cell's 24 triangles, the new state on
+// the initial mesh, clean-up and kinetic-energy fix (DESIGN §5). Returns what
+// crossed the outer boundary.
+inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state,
+                                     const RemapLayout& layout, const RemapControls& controls,
+                                     const MatRealView& q, const DeviceView<Real** [3]>& gradient,
+                                     const SweptFaces& swept) {
+  const auto neighbors = mesh.cell_neighbors;
+  const auto s = state;
+  const double alpha_floor = controls.alpha_floor;
+  RemapBoundaryFlux boundary;
+  Kokkos::parallel_reduce(
+      "lagremap::remap::fluxes_and_update", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
+      KOKKOS_LAMBDA(const Index c, RemapBoundaryFlux& crossed) {
+        const int n_variables = layout.n_variables;
+        const int n_materials = layout.n_materials;
+        // --- integrals over the Lagrangian cell, then the fluxes
+        double integral[kMaxRemapVariables];
+        const double volume_lag = s.vol_c(c);
+        for (int v = 0; v < n_variables; ++v) integral[v] = q(c, v) * volume_lag;
+        double volume = volume_lag;
+        for (int f = 0; f < 6; ++f) {
+          const Index nb = neighbors(c, f);
+          for (int k = 0; k < 4; ++k) {
+            const Index t = sweptTriangleId(c, f, k);
+            const double dvol = swept.dvol_t(t);
+            volume += dvol;
+            if (nb < 0) {
+              // Outer boundary: the swept region takes the cell's own state
+              // (zero gradient); nothing crosses a wall (dV = 0 there).
+              if (dvol == 0.0) continue;
+              for (int v = 0; v < n_variables; ++v) integral[v] += dvol * q(c, v);
+              double mass = 0.0, energy = dvol * q(c, layout.kinetic());
+              for (int m = 0; m < n_materials; ++m) {
+                mass += dvol * q(c, layout.mass(m));
+                energy += dvol * q(c, layout.energy(m));
+              }
+              crossed.v[0] += mass;
+              for (int d = 0; d < 3; ++d) crossed.v[1 + d] += dvol * q(c, layout.momentum(d));
+              crossed.v[4] += energy;
+              continue;
+            }
+            // Upwind cell: the one the region is taken from (c gains from nb
+            // when dV > 0); both sides make the same choice, ties included.
+            const Index up = dvol > 0.0 ? nb : (dvol < 0.0 ? c : (nb < c ? nb : c));
+            const Vec3 lever = loadVec3(swept.moment_t, t) - dvol * loadVec3(s.x_c, up);
+            for (int v = 0; v < n_variables; ++v) {
+              integral[v] += dvol * q(up, v) + gradient(up, v, 0) * lever.x +
+                             gradient(up, v, 1) * lever.y + gradient(up, v, 2) * lever.z;
+            }
+          }
+        }
+
+        // --- volume fractions: clip to [0, 1], renormalise; drop traces
+        double alpha[kMaxMaterials], mass[kMaxMaterials], internal[kMaxMaterials];
+        double alpha_sum = 0.0;
+        int main_material = 0;
+        for (int k = 0; k < n_materials; ++k) {
+          const double fraction = integral[layout.alpha(k)] / volume;
+          alpha[k] = fraction < 0.0 ? 0.0 : (fraction > 1.0 ? 1.0 : fraction);
+          mass[k] = integral[layout.mass(k)];
+          internal[k] = integral[layout.energy(k)];
+          if (alpha[k] > alpha[main_material]) main_material = k;
+        }
+        for (int k = 0; k < n_materials; ++k) {
+          if (k == main_material) continue;
+          if (alpha[k] <= alpha_floor || !(mass[k] > 0.0)) {
+            // A trace (or a round-off negative mass) is not a material state:
+            // its mass and energy join the main material, so nothing is lost.
+            mass[main_material] += mass[k];
+            internal[main_material] += internal[k];
+            alpha[k] = 0.0;
+            mass[k] = 0.0;
+            internal[k] = 0.0;
+          }
+          alpha_sum += alpha[k];
+        }
+        alpha_sum += alpha[main_material];
+        for (int k = 0; k < n_materials; ++k) alpha[k] /= alpha_sum;
+
+        // --- velocity and the kinetic-energy fix: the remapped kinetic energy
+        // is kept, the difference to |m V|^2 / 2m goes to the internal energies
+        // by mass fraction, so the total energy is remapped conservatively.
+        double cell_mass = 0.0;
+        for (int k = 0; k < n_materials; ++k) cell_mass += mass[k];
+        const Vec3 momentum{integral[layout.momentum(0)], integral[layout.momentum(1)],
+                            integral[layout.momentum(2)]};
+        const Vec3 velocity = (1.0 / cell_mass) * momentum;
+        const double kinetic_remapped = integral[layout.kinetic()];
+        const double kinetic_fix = kinetic_remapped - 0.5 * dot(momentum, velocity);
+        double cell_internal = 0.0;
+        for (int k = 0; k < n_materials; ++k) {
+          internal[k] += (mass[k] / cell_mass) * kinetic_fix;
+          cell_internal += internal[k];
+        }
+
+        s.m_c(c) = cell_mass;
+        storeVec3(s.v_c, c, velocity);
+        s.E_c(c) = (cell_internal + 0.5 * dot(momentum, velocity)) / cell_mass;
+        for (int k = 0; k < n_materials; ++k) {
+          s.alpha_ck(c, k) = alpha[k];
+          s.m_ck(c, k) = mass[k];
+          s.e_ck(c, k) = alpha[k] > 0.0 ? internal[k] / mass[k] : 0.0;
+          const int column = layout.tensor_column[k];
+          if (column < 0) continue;
+          // alpha^k T^k / alpha^k with the remapped alpha^k volume itself.
+          const double material_volume = integral[layout.alpha(k)];
+          const bool present = alpha[k] > 0.0 && material_volume > 0.0;
+          double t[6];
+          for (int i = 0; i < 6; ++i) t[i] = present ? integral[column + i] / material_volume : 0.0;
+          const bool hyper = s.materials(k).strength == StrengthKind::NeoHookean;
+          const SymMat3 tensor =
+              hyper && !present ? identitySym() : SymMat3{t[0], t[1], t[2], t[3], t[4], t[5]};
+          storeSym(hyper ? s.B_ck : s.S_ck, c, k, tensor);
+        }
+      },
+      boundary);
+  return boundary;
+}
+
+}  // namespace lagremap

@@ -1,0 +1,62 @@
+#include "remap_step.hpp"
+
+#include <stdexcept>
+
+namespace lagremap {
+
+namespace {
+
+RemapLayout makeLayout(const State& state) {
+  if (state.n_materials > kMaxMaterials) {
+    throw std::invalid_argument("remap: at most " + std::to_string(kMaxMaterials) + " materials");
+  }
+  const auto materials = Kokkos::create_mirror_view_and_copy(HostSpace(), state.materials);
+  RemapLayout layout;
+  layout.n_materials = state.n_materials;
+  int column = 3 * state.n_materials + 4;
+  for (int k = 0; k < kMaxMaterials; ++k) layout.tensor_column[k] = -1;
+  for (int k = 0; k < state.n_materials; ++k) {
+    if (materials(k).strength == StrengthKind::None) continue;
+    layout.tensor_column[k] = column;
+    column += 6;
+  }
+  layout.n_variables = column;
+  return layout;
+}
+
+}  // namespace
+
+RemapStep::RemapStep(Mesh& mesh, State& state, const RemapControls& controls, PhaseTimers& timers)
+    : mesh_(mesh), state_(state), controls_(controls), timers_(timers), layout_(makeLayout(state)) {
+  const Index n_cells = mesh.n_cells;
+  x_target_ = Vec3View("lagremap::remap::x_target", mesh.n_nodes);
+  Kokkos::deep_copy(x_target_, mesh.x_n);
+  density_ = MatRealView("lagremap::remap::density", n_cells, layout_.n_variables);
+  gradient_ = DeviceView<Real** [3]>("lagremap::remap::gradient", n_cells, layout_.n_variables);
+  swept_ = allocateSweptFaces(mesh);
+  m_c_saved_ = RealView("lagremap::remap::m_c_saved", n_cells);
+  alpha_ck_saved_ = MatRealView("lagremap::remap::alpha_ck_saved", n_cells, state.n_materials);
+  m_ck_saved_ = MatRealView("lagremap::remap::m_ck_saved", n_cells, state.n_materials);
+}
+
+RemapBoundaryFlux RemapStep::apply() {
+  auto scope = timers_.scope(Phase::Remap);
+  Kokkos::deep_copy(m_c_saved_, state_.m_c);
+  Kokkos::deep_copy(alpha_ck_saved_, state_.alpha_ck);
+  Kokkos::deep_copy(m_ck_saved_, state_.m_ck);
+  remapDensities(state_, layout_, density_);
+  remapGradients(mesh_, state_, layout_, controls_, density_, gradient_);
+  computeSweptFaces(mesh_, mesh_.x_n, x_target_, swept_);
+  const RemapBoundaryFlux crossed =
+      remapUpdate(mesh_, state_, layout_, controls_, density_, gradient_, swept_);
+  Kokkos::deep_copy(mesh_.x_n, x_target_);
+  return crossed;
+}
+
+void RemapStep::restoreStartOfStep() {
+  Kokkos::deep_copy(state_.m_c, m_c_saved_);
+  Kokkos::deep_copy(state_.alpha_ck, alpha_ck_saved_);
+  Kokkos::deep_copy(state_.m_ck, m_ck_saved_);
+}
+
+}  // namespace lagremap

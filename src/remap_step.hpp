@@ -1,0 +1,45 @@
+// The remap phase of DESIGN §5 as the time loop calls it: after each
+// Lagrangian step, the state is swept back onto the initial mesh
+//   densities -> limited gradients (Lagrangian mesh) -> swept regions
+//   -> upwind fluxes, clean-up, kinetic-energy fix -> mesh back to x_initial
+// and the caller recomputes the geometry (the next step's time step).
+#pragma once
+
+#include "../kernels/remap.hpp"
+#include "mesh.hpp"
+#include "state.hpp"
+#include "timers.hpp"
+
+namespace lagremap {
+
+class RemapStep {
+ public:
+  // Keeps the mesh's current node positions as the remap target.
+  RemapStep(Mesh& mesh, State& state, const RemapControls& controls, PhaseTimers& timers);
+
+  // Remaps the state of the Lagrangian mesh onto the target mesh and moves the
+  // mesh back; returns what crossed the outer boundary (mass, momentum,
+  // total energy). The geometry of the state is stale afterwards.
+  RemapBoundaryFlux apply();
+  // Puts back the masses and volume fractions of the start of the last
+  // apply() (the Lagrangian step restores the rest of the state).
+  void restoreStartOfStep();
+
+  const RemapLayout& layout() const { return layout_; }
+  const Vec3View& targetPositions() const { return x_target_; }
+
+ private:
+  Mesh& mesh_;
+  State& state_;
+  RemapControls controls_;
+  PhaseTimers& timers_;
+  RemapLayout layout_;
+  Vec3View x_target_;
+  MatRealView density_;              // (cell, variable) per unit volume
+  DeviceView<Real** [3]> gradient_;  // (cell, variable, xyz), limited
+  SweptFaces swept_;
+  RealView m_c_saved_;
+  MatRealView alpha_ck_saved_, m_ck_saved_;
+};
+
+}  // namespace lagremap
