@@ -26,7 +26,10 @@ KOKKOS_INLINE_FUNCTION void gatherCellNodes(const CellNodesView& cell_nodes, con
 //   aL^2 = sum (m^k/m) aL_k^2,  aT^2 = sum (m^k/m) aT_k^2,
 // with aT_k^2 = mu_k / rho^k and aL_k^2 = a_k^2 + 4/3 aT_k^2 for a solid,
 // aL_k = a_k and aT_k = 0 for a fluid. A pure cell's material energy is the
-// cell's e = E - |V|^2/2 itself (no round-off drift between the two).
+// cell's e = E - |V|^2/2 itself (no round-off drift between the two). Traces
+// (alpha^k < State::alpha_trace in a mixed cell) are left out and the weights
+// renormalised over the other materials; a trace's pressure is set to the
+// mixture's (pressure equilibrium).
 struct CellThermo {
   double pressure = 0.0, aL2 = 0.0, aT2 = 0.0;
   double min_sound_speed2 = 1e300;  // smallest a_k^2 of the present materials (<= 0: invalid)
@@ -38,12 +41,21 @@ KOKKOS_INLINE_FUNCTION CellThermo cellThermo(const State& s, Index c, double vol
   CellThermo mix;
   int present = 0;
   for (int k = 0; k < s.n_materials; ++k) present += s.alpha_ck(c, k) > 0.0;
-  const double inv_mass = 1.0 / s.m_c(c);
+  const double threshold = present > 1 ? s.alpha_trace : 0.0;
+  double active_alpha = 0.0, active_mass = 0.0;
+  for (int k = 0; k < s.n_materials; ++k) {
+    const double alpha = s.alpha_ck(c, k);
+    if (alpha > 0.0 && alpha >= threshold) {
+      active_alpha += alpha;
+      active_mass += s.m_ck(c, k);
+    }
+  }
+  const double inv_mass = 1.0 / active_mass;
   mix.valid = present > 0;
   SymMat3 deviator = identitySym(0.0);
   for (int k = 0; k < s.n_materials; ++k) {
     const double alpha = s.alpha_ck(c, k);
-    if (!(alpha > 0.0)) continue;
+    if (!(alpha > 0.0 && alpha >= threshold)) continue;
     const MaterialParams& material = s.materials(k);
     const double mass = s.m_ck(c, k);
     const double rho = mass / (alpha * volume);
@@ -66,6 +78,15 @@ KOKKOS_INLINE_FUNCTION CellThermo cellThermo(const State& s, Index c, double vol
       deviator += alpha * S;
     } else if (material.strength == StrengthKind::HypoElastic) {
       deviator += alpha * loadSym(s.S_ck, c, k);
+    }
+  }
+  if (present > 1 && active_alpha != 1.0) {  // traces left out: renormalise
+    const double scale = 1.0 / active_alpha;
+    mix.pressure *= scale;
+    deviator = scale * deviator;
+    for (int k = 0; k < s.n_materials; ++k) {
+      const double alpha = s.alpha_ck(c, k);
+      if (alpha > 0.0 && alpha < threshold) s.p_ck(c, k) = mix.pressure;
     }
   }
   if (s.has_solids) storeSym(s.S_c, c, deviator);

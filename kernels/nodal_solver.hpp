@@ -298,6 +298,8 @@ KOKKOS_INLINE_FUNCTION Mat3 stageDeformation(const CellNodesView& cell_nodes, co
 //   with W^k = dt alpha^k sigma^k : L (sigma^k of the stage start) and the
 //   dissipation D = m (e_new - e^n) - sum_k W^k,
 //   m^k (e^k - e^k,n) = W^k + alpha^k D, which sums to the cell's change;
+//   a trace (State::alpha_trace) takes the cell's specific change, the others
+//   share the rest with their alphas renormalised;
 // - hypo-elastic deviators: objective Jaumann update of S^k with L, then
 //   radial return (the plastic work is already in the total energy, so e
 //   receives it without an extra term);
@@ -316,14 +318,21 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
   if (!mixed) s.e_ck(c, last) = e_new;
   if (!mixed && !s.has_solids) return;
   const Mat3 gradient = velocityGradient(cell_nodes, s, c);
-  double dissipation = 0.0;
+  const double threshold = mixed ? s.alpha_trace : 0.0;
+  double dissipation = 0.0, active_alpha = 0.0, de_cell = 0.0;
   if (mixed) {
     const Vec3 v0 = loadVec3(s.v_c0, c);
-    dissipation = s.m_c(c) * (e_new - (s.E_c0(c) - 0.5 * dot(v0, v0)));
+    de_cell = e_new - (s.E_c0(c) - 0.5 * dot(v0, v0));
+    dissipation = s.m_c(c) * de_cell;
     for (int k = 0; k < s.n_materials; ++k) {
       const double alpha = s.alpha_ck(c, k);
       if (!(alpha > 0.0)) continue;
-      dissipation -= dt_stage * alpha * stressPower(s, c, k, gradient);
+      if (alpha < threshold) {
+        dissipation -= s.m_ck(c, k) * de_cell;
+      } else {
+        active_alpha += alpha;
+        dissipation -= dt_stage * alpha * stressPower(s, c, k, gradient);
+      }
     }
   }
   bool deformation_known = false;
@@ -331,12 +340,23 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
   for (int k = 0; k < s.n_materials; ++k) {
     const double alpha = s.alpha_ck(c, k);
     if (!(alpha > 0.0)) continue;
-    if (mixed) {
+    const bool trace = alpha < threshold;
+    if (mixed && trace) {
+      s.e_ck(c, k) = s.e_ck0(c, k) + de_cell;
+    } else if (mixed) {
       const double work = dt_stage * alpha * stressPower(s, c, k, gradient);
-      s.e_ck(c, k) = s.e_ck0(c, k) + (work + alpha * dissipation) / s.m_ck(c, k);
+      s.e_ck(c, k) = s.e_ck0(c, k) + (work + (alpha / active_alpha) * dissipation) / s.m_ck(c, k);
     }
     const MaterialParams& material = s.materials(k);
-    if (material.strength == StrengthKind::HypoElastic) {
+    if (trace) {
+      // A trace's deviator is not driven by the cell's strain rate (it has no
+      // say in the stress); it keeps its value until it is a material again.
+      if (material.strength == StrengthKind::HypoElastic) {
+        storeSym(s.S_ck, c, k, loadSym(s.S_ck0, c, k));
+      } else if (material.strength == StrengthKind::NeoHookean) {
+        storeSym(s.B_ck, c, k, loadSym(s.B_ck0, c, k));
+      }
+    } else if (material.strength == StrengthKind::HypoElastic) {
       const SymMat3 trial = jaumannUpdate(loadSym(s.S_ck0, c, k), gradient, material.mu, dt_stage);
       storeSym(s.S_ck, c, k, radialReturn(trial, material.yield_stress).S);
     } else if (material.strength == StrengthKind::NeoHookean) {

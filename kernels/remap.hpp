@@ -8,9 +8,21 @@
 //                    beta = 2 by default);
 //   computeSweptFaces (swept_face.hpp): volume and first moment swept by
 //                    every face triangle between the two meshes;
-//   remapUpdate:     per cell, the upwind second-order flux through each of its
-//                    24 triangles, the new integrals, the clean-up of volume
+//   remapUpdate:     per cell, the upwind flux through each of its 24
+//                    triangles, the new integrals, the clean-up of volume
 //                    fractions, the recovered state and the kinetic-energy fix.
+// Fluxes are second order in the primitive variables, each reconstructed
+// (limited) in the upwind cell: alpha^k (compressive limiter), the material
+// density rho^k and energy e^k, and the velocity V. The conserved fluxes
+// follow by the product rule,
+//   F(alpha^k rho^k) = F(alpha^k) rho^k_up + alpha^k_up grad(rho^k) . (M_t - x_up dV_t),
+//   F(alpha^k rho^k e^k) = F(alpha^k rho^k) e^k_up + (alpha^k rho^k)_up grad(e^k) . (...),
+//   F(rho V) = F(rho) V_up + rho_up grad(V) . (...),  F(rho |V|^2/2) likewise,
+// and the tensors ride on the volume flux, F(alpha^k T^k) = F(alpha^k) T^k_up.
+// So a material's density, energy and the velocity stay weighted means of
+// limited values: a trace of a material swept into a cell (alpha ~ 1e-6)
+// keeps a physical density instead of the ratio of two independently limited
+// reconstructions, and velocity gets no new extrema at a density jump.
 // Every cell computes the fluxes of its own 24 triangles. The swept regions of a
 // face are stored with exactly opposite signs on its two sides and the upwind
 // cell is chosen identically from both (ties at dV = 0 go to the lower cell
@@ -42,6 +54,32 @@ struct RemapLayout {
   KOKKOS_INLINE_FUNCTION int energy(int k) const { return 2 * n_materials + k; }
   KOKKOS_INLINE_FUNCTION int momentum(int d) const { return 3 * n_materials + d; }
   KOKKOS_INLINE_FUNCTION int kinetic() const { return 3 * n_materials + 3; }
+  // Columns with a reconstructed gradient. The gradient is that of the
+  // primitive variable of the column (primitiveValue): alpha^k, rho^k, e^k and
+  // the velocity; the kinetic energy and the tensors are not reconstructed.
+  KOKKOS_INLINE_FUNCTION bool reconstructed(int v) const { return v < momentum(0) + 3; }
+
+  // Primitive variable of column v in a cell from its densities q; false if
+  // the cell has none (a material absent from it).
+  template <class Table>
+  KOKKOS_INLINE_FUNCTION bool primitiveValue(const Table& q, Index c, int v, double& value) const {
+    if (v < n_materials) {
+      value = q(c, v);
+      return true;
+    }
+    if (v < 3 * n_materials) {
+      const int k = v < 2 * n_materials ? v - n_materials : v - 2 * n_materials;
+      const double alpha = q(c, alpha_column(k)), mass = q(c, n_materials + k);
+      if (!(alpha > 0.0 && mass > 0.0)) return false;
+      value = v < 2 * n_materials ? mass / alpha : q(c, v) / mass;
+      return true;
+    }
+    double rho = 0.0;  // bulk density
+    for (int k = 0; k < n_materials; ++k) rho += q(c, n_materials + k);
+    value = q(c, v) / rho;
+    return true;
+  }
+  KOKKOS_INLINE_FUNCTION int alpha_column(int k) const { return k; }
 };
 
 struct RemapControls {
@@ -49,6 +87,8 @@ struct RemapControls {
   // Below this volume fraction a material is dropped from the cell after the
   // sweep (its mass and energy go to the cell's main material).
   double alpha_floor = 1e-10;
+  bool limit = true;               // false: unlimited reconstruction (tests: linear exactness)
+  bool kinetic_energy_fix = true;  // false: kinetic energy from the remapped momentum (tests)
 };
 
 // Quantities the outer boundary exchanged in the sweep (mass, momentum xyz,
@@ -95,6 +135,7 @@ inline void remapGradients(const Mesh& mesh, const State& state, const RemapLayo
   const auto x_n = mesh.x_n;
   const auto x_c = state.x_c;
   const double beta_alpha = controls.beta_alpha;
+  const bool limit = controls.limit;
   Kokkos::parallel_for(
       "lagremap::remap::gradients", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
       KOKKOS_LAMBDA(const Index c) {
@@ -112,12 +153,18 @@ inline void remapGradients(const Mesh& mesh, const State& state, const RemapLayo
         Vec3 vertex[8];
         for (int p = 0; p < 8; ++p) vertex[p] = loadVec3(x_n, cell_nodes(c, p)) - centroid;
         for (int v = 0; v < layout.n_variables; ++v) {
-          const double center = q(c, v);
+          if (!layout.reconstructed(v)) continue;
+          double center = 0.0;
+          if (!layout.primitiveValue(q, c, v, center)) {
+            for (int d = 0; d < 3; ++d) gradient(c, v, d) = 0.0;
+            continue;
+          }
           Bounds bounds(center);
           Vec3 rhs{0.0, 0.0, 0.0};
           for (int f = 0; f < 6; ++f) {
-            if (nb[f] < 0) continue;
-            const double value = q(nb[f], v);
+            double value = 0.0;
+            // a neighbour without the material counts as "no change"
+            if (nb[f] < 0 || !layout.primitiveValue(q, nb[f], v, value)) continue;
             rhs += (value - center) * offset[f];
             bounds.include(value);
           }
@@ -125,7 +172,7 @@ inline void remapGradients(const Mesh& mesh, const State& state, const RemapLayo
           VertexExcursion excursion;
           for (int p = 0; p < 8; ++p) excursion.include(dot(grad, vertex[p]));
           const double beta = v < layout.n_materials ? beta_alpha : 1.0;
-          const double limiter = cellLimiter(excursion, center, bounds, beta);
+          const double limiter = limit ? cellLimiter(excursion, center, bounds, beta) : 1.0;
           gradient(c, v, 0) = limiter * grad.x;
           gradient(c, v, 1) = limiter * grad.y;
           gradient(c, v, 2) = limiter * grad.z;
@@ -143,6 +190,7 @@ inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state,
   const auto neighbors = mesh.cell_neighbors;
   const auto s = state;
   const double alpha_floor = controls.alpha_floor;
+  const bool kinetic_energy_fix = controls.kinetic_energy_fix;
   RemapBoundaryFlux boundary;
   Kokkos::parallel_reduce(
       "lagremap::remap::fluxes_and_update", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
@@ -153,6 +201,27 @@ inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state,
         double integral[kMaxRemapVariables];
         const double volume_lag = s.vol_c(c);
         for (int v = 0; v < n_variables; ++v) integral[v] = q(c, v) * volume_lag;
+        // Range of each material's density and specific energy over the cells
+        // it comes from (this one and the upwind ones): the bounds of the
+        // clean-up below.
+        double rho_lo[kMaxMaterials], rho_hi[kMaxMaterials], e_lo[kMaxMaterials],
+            e_hi[kMaxMaterials];
+        for (int m = 0; m < n_materials; ++m) {
+          rho_lo[m] = e_lo[m] = 1e300;
+          rho_hi[m] = e_hi[m] = -1e300;
+        }
+        auto includeSource = [&](Index cell, int m) {
+          const double alpha_source = q(cell, layout.alpha(m));
+          const double mass_source = q(cell, layout.mass(m));
+          if (!(alpha_source > 0.0 && mass_source > 0.0)) return;
+          const double rho = mass_source / alpha_source;
+          const double e = q(cell, layout.energy(m)) / mass_source;
+          rho_lo[m] = rho < rho_lo[m] ? rho : rho_lo[m];
+          rho_hi[m] = rho > rho_hi[m] ? rho : rho_hi[m];
+          e_lo[m] = e < e_lo[m] ? e : e_lo[m];
+          e_hi[m] = e > e_hi[m] ? e : e_hi[m];
+        };
+        for (int m = 0; m < n_materials; ++m) includeSource(c, m);
         double volume = volume_lag;
         for (int f = 0; f < 6; ++f) {
           const Index nb = neighbors(c, f);
@@ -179,10 +248,48 @@ inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state,
             // when dV > 0); both sides make the same choice, ties included.
             const Index up = dvol > 0.0 ? nb : (dvol < 0.0 ? c : (nb < c ? nb : c));
             const Vec3 lever = loadVec3(swept.moment_t, t) - dvol * loadVec3(s.x_c, up);
-            for (int v = 0; v < n_variables; ++v) {
-              integral[v] += dvol * q(up, v) + gradient(up, v, 0) * lever.x +
-                             gradient(up, v, 1) * lever.y + gradient(up, v, 2) * lever.z;
+            auto slope = [&](int v) {  // limited gradient of column v's primitive . lever
+              return gradient(up, v, 0) * lever.x + gradient(up, v, 1) * lever.y +
+                     gradient(up, v, 2) * lever.z;
+            };
+            // Materials: volume second order; mass and energy by the product
+            // rule on the upwind reconstructions alpha, rho^k, e^k.
+            double mass_flux_total = 0.0;
+            for (int m = 0; m < n_materials; ++m) {
+              const int a = layout.alpha(m);
+              const double alpha_flux = dvol * q(up, a) + slope(a);
+              integral[a] += alpha_flux;
+              const double alpha_up = q(up, a);
+              const double mass_up = q(up, layout.mass(m));
+              if (!(alpha_up > 0.0 && mass_up > 0.0)) continue;  // nothing of m to carry
+              if (up != c) includeSource(up, m);
+              const double rho_up = mass_up / alpha_up;
+              const double e_up = q(up, layout.energy(m)) / mass_up;
+              const double mass_flux = alpha_flux * rho_up + alpha_up * slope(layout.mass(m));
+              integral[layout.mass(m)] += mass_flux;
+              integral[layout.energy(m)] += mass_flux * e_up + mass_up * slope(layout.energy(m));
+              mass_flux_total += mass_flux;
+              const int column = layout.tensor_column[m];
+              if (column < 0) continue;
+              for (int i = 0; i < 6; ++i) {
+                integral[column + i] += alpha_flux * (q(up, column + i) / alpha_up);
+              }
             }
+            // Momentum and kinetic energy ride on the mass flux with the
+            // upwind velocity reconstruction: a new velocity is a weighted mean
+            // of limited values (no new extrema), exact for linear V at
+            // uniform density.
+            double rho_up = 0.0;
+            for (int m = 0; m < n_materials; ++m) rho_up += q(up, layout.mass(m));
+            double kinetic_flux = 0.0;
+            for (int d = 0; d < 3; ++d) {
+              const int column = layout.momentum(d);
+              const double v_up = q(up, column) / rho_up;
+              const double dv = slope(column);
+              integral[column] += mass_flux_total * v_up + rho_up * dv;
+              kinetic_flux += mass_flux_total * 0.5 * v_up * v_up + rho_up * v_up * dv;
+            }
+            integral[layout.kinetic()] += kinetic_flux;
           }
         }
 
@@ -196,6 +303,27 @@ inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state,
           mass[k] = integral[layout.mass(k)];
           internal[k] = integral[layout.energy(k)];
           if (alpha[k] > alpha[main_material]) main_material = k;
+        }
+        // A material's volume and mass fluxes come from different faces; where
+        // they nearly cancel (a cell emptying of a material), mass / volume and
+        // energy / mass lose all precision. Its density is kept inside the
+        // range of its sources by adjusting its volume fraction (renormalised
+        // below), its specific energy by handing the excess internal energy to
+        // the cell's main material: no mass or energy is lost.
+        for (int k = 0; k < n_materials; ++k) {
+          if (!(alpha[k] > 0.0 && mass[k] > 0.0) || !(rho_hi[k] >= rho_lo[k])) continue;
+          const double rho = mass[k] / (alpha[k] * volume);
+          if (rho < rho_lo[k] || rho > rho_hi[k]) {
+            alpha[k] = mass[k] / ((rho < rho_lo[k] ? rho_lo[k] : rho_hi[k]) * volume);
+            alpha[k] = alpha[k] > 1.0 ? 1.0 : alpha[k];
+          }
+          if (k == main_material) continue;
+          const double e = internal[k] / mass[k];
+          if (e < e_lo[k] || e > e_hi[k]) {
+            const double bounded = mass[k] * (e < e_lo[k] ? e_lo[k] : e_hi[k]);
+            internal[main_material] += internal[k] - bounded;
+            internal[k] = bounded;
+          }
         }
         for (int k = 0; k < n_materials; ++k) {
           if (k == main_material) continue;
@@ -222,7 +350,8 @@ inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state,
                             integral[layout.momentum(2)]};
         const Vec3 velocity = (1.0 / cell_mass) * momentum;
         const double kinetic_remapped = integral[layout.kinetic()];
-        const double kinetic_fix = kinetic_remapped - 0.5 * dot(momentum, velocity);
+        const double kinetic_fix =
+            kinetic_energy_fix ? kinetic_remapped - 0.5 * dot(momentum, velocity) : 0.0;
         double cell_internal = 0.0;
         for (int k = 0; k < n_materials; ++k) {
           internal[k] += (mass[k] / cell_mass) * kinetic_fix;

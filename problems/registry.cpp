@@ -169,6 +169,95 @@ void hostCellShapes(const HostMesh& mesh, std::vector<double>& volume,
   }
 }
 
+void fillMaterialRegions(ProblemSetup& setup, const MaterialRegions& regions,
+                         int samples_per_edge) {
+  const HostMesh mesh = copyToHost(setup.mesh);
+  const Index n_cells = setup.mesh.n_cells;
+  const int n_materials = int(setup.materials.size());
+  InitialCells& cells = setup.cells;
+  cells = InitialCells();
+  cells.alpha_k.assign(std::size_t(n_cells) * n_materials, 0.0);
+  cells.rho_k.assign(std::size_t(n_cells) * n_materials, 0.0);
+  cells.e_k.assign(std::size_t(n_cells) * n_materials, 0.0);
+  cells.v.assign(std::size_t(n_cells), Vec3{0, 0, 0});
+  const int n = samples_per_edge;
+  std::vector<double> weight_k(static_cast<std::size_t>(n_materials));
+  for (Index c = 0; c < n_cells; ++c) {
+    Vec3 x[8];
+    for (int p = 0; p < 8; ++p) x[p] = loadVec3(mesh.x_n, mesh.cell_nodes(c, p));
+    std::fill(weight_k.begin(), weight_k.end(), 0.0);
+    Vec3 momentum{0, 0, 0};
+    double mass = 0.0;
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j)
+        for (int k = 0; k < n; ++k) {
+          // Trilinear map of VTK hexahedron nodes (0..3 at zeta = 0, 4..7 at zeta = 1).
+          const double a = (i + 0.5) / n, b = (j + 0.5) / n, g = (k + 0.5) / n;
+          const double w[8] = {(1 - a) * (1 - b) * (1 - g),
+                               a * (1 - b) * (1 - g),
+                               a * b * (1 - g),
+                               (1 - a) * b * (1 - g),
+                               (1 - a) * (1 - b) * g,
+                               a * (1 - b) * g,
+                               a * b * g,
+                               (1 - a) * b * g};
+          Vec3 point{0, 0, 0}, dxa{0, 0, 0}, dxb{0, 0, 0}, dxg{0, 0, 0};
+          for (int p = 0; p < 8; ++p) point += w[p] * x[p];
+          dxa = (1 - b) * (1 - g) * (x[1] - x[0]) + b * (1 - g) * (x[2] - x[3]) +
+                (1 - b) * g * (x[5] - x[4]) + b * g * (x[6] - x[7]);
+          dxb = (1 - a) * (1 - g) * (x[3] - x[0]) + a * (1 - g) * (x[2] - x[1]) +
+                (1 - a) * g * (x[7] - x[4]) + a * g * (x[6] - x[5]);
+          dxg = (1 - a) * (1 - b) * (x[4] - x[0]) + a * (1 - b) * (x[5] - x[1]) +
+                a * b * (x[6] - x[2]) + (1 - a) * b * (x[7] - x[3]);
+          const double jacobian = dot(dxa, cross(dxb, dxg));
+          const int material = regions.material_at(point);
+          if (material < 0 || material >= n_materials) {
+            throw std::logic_error("problem set-up: a point has no material");
+          }
+          weight_k[material] += jacobian;
+          mass += jacobian * regions.rho[material];
+          momentum += (jacobian * regions.rho[material]) * regions.velocity(material, point);
+        }
+    double total = 0.0;
+    for (double weight : weight_k) total += weight;
+    for (int m = 0; m < n_materials; ++m) {
+      const std::size_t at = std::size_t(c) * n_materials + m;
+      cells.alpha_k[at] = weight_k[m] / total;
+      cells.rho_k[at] = regions.rho[m];
+      cells.e_k[at] = regions.e[m];
+    }
+    cells.v[c] = (1.0 / mass) * momentum;
+  }
+}
+
+double materialFrontX(const FinalFields& fields, int material, double y_line) {
+  const Index n_cells = Index(fields.x_c.extent(0));
+  // The row of cells whose centroids are nearest to the line (on a line
+  // between two rows, the one above it).
+  double row_y = NAN, best = INFINITY;
+  for (Index c = 0; c < n_cells; ++c) {
+    const double dy = fields.x_c(c, 1) - y_line;
+    const double distance = std::abs(dy) - (dy >= 0.0 ? 1e-12 * (1.0 + std::abs(y_line)) : 0.0);
+    if (distance < best) {
+      best = distance;
+      row_y = fields.x_c(c, 1);
+    }
+  }
+  std::vector<std::pair<double, double>> row;  // (x, alpha)
+  for (Index c = 0; c < n_cells; ++c) {
+    if (std::abs(fields.x_c(c, 1) - row_y) <= 1e-9 * (1.0 + std::abs(row_y))) {
+      row.emplace_back(fields.x_c(c, 0), fields.alpha(c, material));
+    }
+  }
+  std::sort(row.begin(), row.end());
+  for (std::size_t i = row.size(); i-- > 1;) {
+    const auto [x1, a1] = row[i];
+    const auto [x0, a0] = row[i - 1];
+    if (a0 >= 0.5 && a1 < 0.5) return x0 + (a0 - 0.5) / (a0 - a1) * (x1 - x0);
+  }
+  return NAN;
+}
+
 ProblemSetup setupBlock(const Config& config, const Vec3& lo, const Vec3& hi,
                         std::vector<MaterialParams> materials, CellShapes& shapes) {
   BlockSpec block;

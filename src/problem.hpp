@@ -2,6 +2,7 @@
 // checks, registered by name (STYLE §1: the driver only looks them up).
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -44,8 +45,9 @@ struct FinalFields {
   HostMesh mesh;
   RealView::HostMirror rho, p, e, vol;
   Vec3View::HostMirror v, x_c;
-  Sym6View::HostMirror S;         // deviatoric stress (mixture)
-  MatRealView::HostMirror alpha;  // volume fraction of each material
+  Sym6View::HostMirror S;                 // deviatoric stress (mixture)
+  MatRealView::HostMirror alpha;          // volume fraction of each material
+  MatRealView::HostMirror m_k, e_k, p_k;  // mass, specific internal energy, pressure per material
   // The problem's probe after every step: (t, value), first entry at t = 0.
   std::vector<std::pair<double, double>> probe;
 };
@@ -101,5 +103,24 @@ struct CellShapes {
 // the given material table and the shapes of its cells.
 ProblemSetup setupBlock(const Config& config, const Vec3& lo, const Vec3& hi,
                         std::vector<MaterialParams> materials, CellShapes& shapes);
+
+// Initial state of a multi-material problem (remap mode): the material of
+// each point, each material's uniform density and specific internal energy,
+// and its velocity field.
+struct MaterialRegions {
+  std::function<int(const Vec3&)> material_at;
+  std::vector<double> rho, e;  // per material
+  std::function<Vec3(int material, const Vec3& x)> velocity;
+};
+// Fills setup.cells with mixed cells: volume fractions by sampling n^3 points
+// per cell (midpoints of a regular grid of the reference cube, mapped
+// trilinearly and weighted by the map's Jacobian); the cell velocity is the
+// mass-weighted mean of the samples' velocities (momentum conserved).
+void fillMaterialRegions(ProblemSetup& setup, const MaterialRegions& regions,
+                         int samples_per_edge = 8);
+// Position along +x where the volume fraction of `material` falls through 0.5
+// on the row of cells nearest to the line y = y_line, z = mid-thickness
+// (linear interpolation between cell centroids), or NAN if it never does.
+double materialFrontX(const FinalFields& fields, int material, double y_line);
 
 }  // namespace lagremap

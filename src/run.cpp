@@ -37,6 +37,9 @@ Config declareConfig(const Problem& problem, const std::string& mode) {
     config.addReal("remap.alpha_floor", 1e-10, "-",
                    "volume fraction below which a material is dropped from a cell (mass and "
                    "energy kept)");
+    config.addReal("remap.alpha_trace", 1e-3, "-",
+                   "volume fraction below which a material of a mixed cell is a trace: carried, "
+                   "but left out of the cell's stress and sound speed");
   }
   config.addChoice("numerics.order", "2", {"1", "2"},
                    "1: first order; 2: limited linear reconstruction + predictor-corrector");
@@ -69,6 +72,9 @@ FinalFields copyFields(const ProblemSetup& setup, const State& state, double tim
   fields.x_c = Kokkos::create_mirror_view_and_copy(HostSpace(), state.x_c);
   fields.S = Kokkos::create_mirror_view_and_copy(HostSpace(), state.S_c);
   fields.alpha = Kokkos::create_mirror_view_and_copy(HostSpace(), state.alpha_ck);
+  fields.m_k = Kokkos::create_mirror_view_and_copy(HostSpace(), state.m_ck);
+  fields.e_k = Kokkos::create_mirror_view_and_copy(HostSpace(), state.e_ck);
+  fields.p_k = Kokkos::create_mirror_view_and_copy(HostSpace(), state.p_ck);
   return fields;
 }
 
@@ -90,14 +96,27 @@ void writeSnapshot(io::SnapshotSeries& series, const FinalFields& fields) {
       {"density", fields.rho.data(), 1},       {"pressure", fields.p.data(), 1},
       {"internal_energy", fields.e.data(), 1}, {"volume", fields.vol.data(), 1},
       {"velocity", velocity.data(), 3},        {"deviatoric_stress", deviator.data(), 6}};
-  // Volume fractions of multi-material problems, one field per material.
+  // Multi-material problems: each material's volume fraction, density
+  // m^k / (alpha^k v), specific internal energy and pressure (0 where absent).
   const int n_materials = int(fields.alpha.extent(1));
-  std::vector<std::vector<double>> fractions;
+  std::vector<std::vector<double>> material_fields;
   if (n_materials > 1) {
-    fractions.assign(std::size_t(n_materials), std::vector<double>(std::size_t(n_cells)));
+    material_fields.assign(4 * std::size_t(n_materials), std::vector<double>(std::size_t(n_cells)));
     for (int k = 0; k < n_materials; ++k) {
-      for (Index c = 0; c < n_cells; ++c) fractions[k][c] = fields.alpha(c, k);
-      cell_fields.push_back({"volume_fraction_" + std::to_string(k), fractions[k].data(), 1});
+      std::vector<double>* field = &material_fields[4 * std::size_t(k)];
+      for (Index c = 0; c < n_cells; ++c) {
+        const double alpha = fields.alpha(c, k);
+        const bool present = alpha > 0.0;
+        field[0][c] = alpha;
+        field[1][c] = present ? fields.m_k(c, k) / (alpha * fields.vol(c)) : 0.0;
+        field[2][c] = present ? fields.e_k(c, k) : 0.0;
+        field[3][c] = present ? fields.p_k(c, k) : 0.0;
+      }
+      const std::string suffix = "_" + std::to_string(k);
+      cell_fields.push_back({"volume_fraction" + suffix, field[0].data(), 1});
+      cell_fields.push_back({"material_density" + suffix, field[1].data(), 1});
+      cell_fields.push_back({"material_internal_energy" + suffix, field[2].data(), 1});
+      cell_fields.push_back({"material_pressure" + suffix, field[3].data(), 1});
     }
   }
   series.write(fields.time, mesh, cell_fields);
@@ -291,6 +310,10 @@ RunResult runProblem(const RunOptions& options) {
     RemapControls controls;
     controls.beta_alpha = config.real("remap.beta");
     controls.alpha_floor = config.real("remap.alpha_floor");
+    state.alpha_trace = config.real("remap.alpha_trace");
+    if (!(state.alpha_trace >= 0.0 && state.alpha_trace < 0.5 / state.n_materials)) {
+      throw ConfigError("remap.alpha_trace must be in [0, 0.5 / number of materials)");
+    }
     if (!(controls.beta_alpha >= 1.0 && controls.beta_alpha <= 2.0)) {
       throw ConfigError("remap.beta must be in [1, 2]");
     }

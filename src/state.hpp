@@ -22,12 +22,16 @@ struct State {
   // material) is the lagrange-mode case, mixed cells come with the remap.
   int n_materials = 0;
   bool has_solids = false;  // some material has strength: S and B are carried
-  MatRealView alpha_ck;     // volume fraction, constant in the Lagrangian phase (equal strain)
-  MatRealView m_ck;         // mass
-  MatRealView e_ck;         // specific internal energy
-  MatRealView p_ck;         // pressure (derived at every stage)
-  MatSym6View S_ck;         // deviator: evolved (hypo-elastic) or from B (Neo-Hookean)
-  MatSym6View B_ck;         // left Cauchy-Green tensor (Neo-Hookean; I elsewhere)
+  // In a mixed cell, a material below this volume fraction is a trace: it is
+  // carried (mass, energy) but has no say in the cell's stress (its density
+  // is the ratio of two tiny remapped numbers). 0 in lagrange mode.
+  double alpha_trace = 0.0;
+  MatRealView alpha_ck;  // volume fraction, constant in the Lagrangian phase (equal strain)
+  MatRealView m_ck;      // mass
+  MatRealView e_ck;      // specific internal energy
+  MatRealView p_ck;      // pressure (derived at every stage)
+  MatSym6View S_ck;      // deviator: evolved (hypo-elastic) or from B (Neo-Hookean)
+  MatSym6View B_ck;      // left Cauchy-Green tensor (Neo-Hookean; I elsewhere)
 
   // Derived at every stage from the node positions (computeGeometry); the
   // mixture rules of DESIGN §3 give p = sum alpha^k p^k, S = sum alpha^k S^k,

@@ -82,10 +82,11 @@ inline UniformBlock uniformBlock(const BlockSpec& block, const SideBoundaries& s
 // Run options of a built-in problem with `key=value` overrides; no files.
 inline RunOptions problemOptions(const std::string& problem,
                                  const std::vector<std::string>& assignments = {},
-                                 double scale = 1.0) {
+                                 double scale = 1.0, const std::string& mode = "lagrange") {
   RunOptions options;
   options.problem = problem;
-  options.config = declareConfig(findProblem(problem));
+  options.mode = mode;
+  options.config = declareConfig(findProblem(problem), mode);
   for (const auto& assignment : assignments) options.config.setAssignment(assignment);
   options.config.scaleCellCounts(scale);
   options.quiet = true;
