@@ -263,9 +263,11 @@ TEST(Remap, SodInRemapModeConvergesToTheExactSolution) {
     EXPECT_LT(result.drift_mass, 1e-13);
     EXPECT_LT(result.drift_energy, 1e-13);
     for (const Check& check : result.checks) {
-      // Same bound style as lagrange mode: L1(rho) < 0.35 * 10/nx... measured
-      // 5.9e-3 (100) and 3.0e-3 (200) cells.
-      if (check.name == "l1_density") EXPECT_LT(check.value, 0.65 / nx) << nx;
+      // Bound 0.65/nx, the lagrange tests' style; measured 5.9e-3 (100 cells)
+      // and 2.9e-3 (200 cells), first order overall as the shock dominates.
+      if (check.name == "l1_density") {
+        EXPECT_LT(check.value, 0.65 / nx) << nx;
+      }
     }
   }
 }
