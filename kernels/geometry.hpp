@@ -65,11 +65,14 @@ KOKKOS_INLINE_FUNCTION CellThermo cellThermo(const State& s, Index c, double vol
     const double aT2 = mu > 0.0 ? transverseSoundSpeed2(mu, rho) : 0.0;
     const double mass_fraction = present == 1 ? 1.0 : mass * inv_mass;
     mix.pressure += alpha * thermo.pressure;
-    mix.aL2 += mass_fraction * (thermo.sound_speed2 + (4.0 / 3.0) * aT2);
+    // In a mixed cell a material stretched past its sound speed (a solid
+    // dragged into tension by the gas it shares the cell with, equal strain)
+    // adds no stiffness; the cell is only invalid if the mixture has none.
+    const double a2 = present == 1 || thermo.sound_speed2 > 0.0 ? thermo.sound_speed2 : 0.0;
+    mix.aL2 += mass_fraction * (a2 + (4.0 / 3.0) * aT2);
     mix.aT2 += mass_fraction * aT2;
     mix.valid = mix.valid && thermo.valid;
-    mix.min_sound_speed2 =
-        thermo.sound_speed2 < mix.min_sound_speed2 ? thermo.sound_speed2 : mix.min_sound_speed2;
+    mix.min_sound_speed2 = a2 < mix.min_sound_speed2 ? a2 : mix.min_sound_speed2;
     s.p_ck(c, k) = thermo.pressure;
     if (material.strength == StrengthKind::NeoHookean) {
       // Hyper-elastic deviator from B (DESIGN §4), J = rho0 / rho^k.
@@ -90,6 +93,7 @@ KOKKOS_INLINE_FUNCTION CellThermo cellThermo(const State& s, Index c, double vol
     }
   }
   if (s.has_solids) storeSym(s.S_c, c, deviator);
+  if (present > 1) mix.min_sound_speed2 = mix.aL2;
   return mix;
 }
 

@@ -319,7 +319,9 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
   if (!mixed && !s.has_solids) return;
   const Mat3 gradient = velocityGradient(cell_nodes, s, c);
   const double threshold = mixed ? s.alpha_trace : 0.0;
-  double dissipation = 0.0, active_alpha = 0.0, de_cell = 0.0;
+  // W^k = dt alpha^k v sigma^k : L, v the stage-start volume of L's definition
+  const double volume = s.vol_c(c);
+  double dissipation = 0.0, active_alpha = 0.0, active_mass = 0.0, de_cell = 0.0;
   if (mixed) {
     const Vec3 v0 = loadVec3(s.v_c0, c);
     de_cell = e_new - (s.E_c0(c) - 0.5 * dot(v0, v0));
@@ -331,7 +333,8 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
         dissipation -= s.m_ck(c, k) * de_cell;
       } else {
         active_alpha += alpha;
-        dissipation -= dt_stage * alpha * stressPower(s, c, k, gradient);
+        active_mass += s.m_ck(c, k);
+        dissipation -= dt_stage * alpha * volume * stressPower(s, c, k, gradient);
       }
     }
   }
@@ -344,8 +347,13 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
     if (mixed && trace) {
       s.e_ck(c, k) = s.e_ck0(c, k) + de_cell;
     } else if (mixed) {
-      const double work = dt_stage * alpha * stressPower(s, c, k, gradient);
-      s.e_ck(c, k) = s.e_ck0(c, k) + (work + (alpha / active_alpha) * dissipation) / s.m_ck(c, k);
+      const double work = dt_stage * alpha * volume * stressPower(s, c, k, gradient);
+      // D >= 0 is heat, shared by volume fraction (DESIGN §3). A negative D
+      // is the scheme's round-off/splitting error, not physics: shared by
+      // volume it would cool a light gas beside a dense solid far below zero
+      // energy, so it is shared by mass (the same specific change for all).
+      const double share = dissipation >= 0.0 ? alpha / active_alpha : s.m_ck(c, k) / active_mass;
+      s.e_ck(c, k) = s.e_ck0(c, k) + (work + share * dissipation) / s.m_ck(c, k);
     }
     const MaterialParams& material = s.materials(k);
     if (trace) {
