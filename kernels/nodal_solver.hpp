@@ -298,8 +298,9 @@ KOKKOS_INLINE_FUNCTION Mat3 stageDeformation(const CellNodesView& cell_nodes, co
 //   with W^k = dt alpha^k sigma^k : L (sigma^k of the stage start) and the
 //   dissipation D = m (e_new - e^n) - sum_k W^k,
 //   m^k (e^k - e^k,n) = W^k + alpha^k D, which sums to the cell's change;
-//   a trace (State::alpha_trace) takes the cell's specific change, the others
-//   share the rest with their alphas renormalised;
+//   a trace (State::alpha_trace) keeps its specific energy (it does no work:
+//   the cell's specific change is the gas's, meaningless for a solid trace),
+//   the others share all of D with their alphas renormalised;
 // - hypo-elastic deviators: objective Jaumann update of S^k with L, then
 //   radial return (the plastic work is already in the total energy, so e
 //   receives it without an extra term);
@@ -329,9 +330,7 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
     for (int k = 0; k < s.n_materials; ++k) {
       const double alpha = s.alpha_ck(c, k);
       if (!(alpha > 0.0)) continue;
-      if (alpha < threshold) {
-        dissipation -= s.m_ck(c, k) * de_cell;
-      } else {
+      if (alpha >= threshold) {
         active_alpha += alpha;
         active_mass += s.m_ck(c, k);
         dissipation -= dt_stage * alpha * volume * stressPower(s, c, k, gradient);
@@ -345,7 +344,7 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
     if (!(alpha > 0.0)) continue;
     const bool trace = alpha < threshold;
     if (mixed && trace) {
-      s.e_ck(c, k) = s.e_ck0(c, k) + de_cell;
+      s.e_ck(c, k) = s.e_ck0(c, k);
     } else if (mixed) {
       const double work = dt_stage * alpha * volume * stressPower(s, c, k, gradient);
       // D >= 0 is heat, shared by volume fraction (DESIGN §3). A negative D
