@@ -25,6 +25,7 @@
 #include "src/floating_point.hpp"
 #include "src/lagrange_step.hpp"
 #include "src/problem.hpp"
+#include "src/remap_step.hpp"
 #include "src/run.hpp"
 
 namespace {
@@ -83,6 +84,12 @@ class Bench {
     Kokkos::deep_copy(v_c_warm_, state_.v_c);
     Kokkos::deep_copy(E_c_warm_, state_.E_c);
     Kokkos::deep_copy(dvdt_c_warm_, state_.dvdt_c);
+    m_c_warm_ = RealView("bench::m_c_warm", mesh.n_cells);
+    Kokkos::deep_copy(m_c_warm_, state_.m_c);
+    m_ck_warm_ = MatRealView("bench::m_ck_warm", mesh.n_cells, state_.n_materials);
+    Kokkos::deep_copy(m_ck_warm_, state_.m_ck);
+    e_ck_warm_ = MatRealView("bench::e_ck_warm", mesh.n_cells, state_.n_materials);
+    Kokkos::deep_copy(e_ck_warm_, state_.e_ck);
     shocked_cells_ = countShockedCells(config.real("ambient.rho"));
   }
 
@@ -93,6 +100,9 @@ class Bench {
     Kokkos::deep_copy(state_.v_c, v_c_warm_);
     Kokkos::deep_copy(state_.E_c, E_c_warm_);
     Kokkos::deep_copy(state_.dvdt_c, dvdt_c_warm_);
+    Kokkos::deep_copy(state_.m_c, m_c_warm_);  // the remap changes the masses
+    Kokkos::deep_copy(state_.m_ck, m_ck_warm_);
+    Kokkos::deep_copy(state_.e_ck, e_ck_warm_);
     lagremap::computeGeometry(setup_.mesh, state_, numerics_.step);
     Kokkos::deep_copy(state_.x_n0, setup_.mesh.x_n);
     Kokkos::deep_copy(state_.v_c0, state_.v_c);
@@ -131,7 +141,8 @@ class Bench {
   PhaseTimers timers_;
   Numerics numerics_;
   Vec3View x_n_warm_, v_c_warm_;
-  RealView E_c_warm_, dvdt_c_warm_;
+  RealView E_c_warm_, dvdt_c_warm_, m_c_warm_;
+  MatRealView m_ck_warm_, e_ck_warm_;
   double dt_stable_ = 0.0, time_ = 0.0, warmup_seconds_ = 0.0;
   long shocked_cells_ = 0;
 };
@@ -255,6 +266,51 @@ void BM_FullStep(benchmark::State& state, int order) {
   setCellRate(state, "cell_steps_per_second");
 }
 
+// The remap alone (DESIGN §5: densities, gradients, swept regions, fluxes and
+// update) after an untimed Lagrangian step has moved the mesh off its target.
+void BM_Remap(benchmark::State& state) {
+  Bench& b = *g_bench;
+  b.restore();
+  RemapStep remap(b.mesh(), b.state(), RemapControls(), b.timers());
+  LagrangeStep lagrange(b.mesh(), b.state(), b.numerics(), b.timers());
+  const double dt = b.dtBench();
+  long step = 0;
+  for (auto _ : state) {
+    lagrange.advance(dt, ++step);  // untimed: the Lagrangian mesh to remap from
+    Kokkos::fence();
+    Kokkos::Timer timer;
+    const RemapBoundaryFlux crossed = remap.apply();
+    Kokkos::fence();
+    state.SetIterationTime(timer.seconds());
+    benchmark::DoNotOptimize(crossed.v[0]);
+    lagrange.computeGeometry();
+  }
+  setCellRate(state, "cells_per_second");
+}
+
+// A whole Lagrange-Remap step as the driver takes it: advance, remap, geometry.
+void BM_LagrangeRemapStep(benchmark::State& state) {
+  Bench& b = *g_bench;
+  b.restore();
+  RemapStep remap(b.mesh(), b.state(), RemapControls(), b.timers());
+  LagrangeStep lagrange(b.mesh(), b.state(), b.numerics(), b.timers());
+  const double dt = b.dtBench();
+  long step = 0;
+  for (auto _ : state) {
+    Kokkos::Timer timer;
+    lagrange.advance(dt, ++step);
+    remap.apply();
+    const StepLimit limit = lagrange.computeGeometry();
+    Kokkos::fence();
+    state.SetIterationTime(timer.seconds());
+    if (limit.val < dt) {
+      state.SkipWithError("the fixed benchmark dt exceeds the stable dt");
+      break;
+    }
+  }
+  setCellRate(state, "cell_steps_per_second");
+}
+
 // Removes `--n=N` from argv (before benchmark::Initialize sees it); 0 if absent.
 int takeSizeFlag(int& argc, char* argv[]) {
   int n = 0;
@@ -288,6 +344,8 @@ void registerBenchmarks() {
   manual(benchmark::RegisterBenchmark("BM_UpdateAndGeometry", BM_UpdateAndGeometry));
   manual(benchmark::RegisterBenchmark("BM_FullStep/order1", BM_FullStep, 1));
   manual(benchmark::RegisterBenchmark("BM_FullStep/order2", BM_FullStep, 2));
+  manual(benchmark::RegisterBenchmark("BM_Remap", BM_Remap));
+  manual(benchmark::RegisterBenchmark("BM_LagrangeRemapStep/order2", BM_LagrangeRemapStep));
 }
 
 }  // namespace
