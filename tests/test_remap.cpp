@@ -44,7 +44,13 @@ struct TwoGasBox {
     setup.cells.v.assign(n, Vec3{0, 0, 0});
     state = allocateState(setup.mesh, false);
     initializeState(setup, state);
+    hostCellShapes(copyToHost(setup.mesh), target_volume, target_centroid);
+    geometry();
   }
+
+  // Volumes and centroids of the initial mesh, the remap's target.
+  std::vector<double> target_volume;
+  std::vector<Vec3> target_centroid;
 
   // Moves interior nodes by up to `amplitude` of a cell in a random direction:
   // the "Lagrangian" mesh (walls do not move, so nothing crosses them).
@@ -140,11 +146,6 @@ std::vector<double> volumesOf(const State& state) {
   return std::vector<double>(vol.data(), vol.data() + vol.extent(0));
 }
 
-// Volumes and centroids of the target (initial) mesh, from the host formulas.
-void targetShapes(const Mesh& mesh, std::vector<double>& volume, std::vector<Vec3>& centroid) {
-  hostCellShapes(copyToHost(mesh), volume, centroid);
-}
-
 Vec3 linearVelocity(const Vec3& x) {
   return {0.3 + 0.5 * x.x - 0.2 * x.y + 0.1 * x.z, -0.1 + 0.2 * x.x + 0.4 * x.z,
           0.05 - 0.3 * x.y + 0.2 * x.z};
@@ -155,10 +156,6 @@ double linearAlpha(const Vec3& x) {
 
 TEST(Remap, UnlimitedReconstructionRemapsLinearFieldsExactly) {
   TwoGasBox box;
-  box.geometry();
-  std::vector<double> target_volume;
-  std::vector<Vec3> target_centroid;
-  targetShapes(box.setup.mesh, target_volume, target_centroid);
   RemapControls controls;
   controls.limit = false;
   RemapStep remap(box.setup.mesh, box.state, controls, box.timers);
@@ -172,9 +169,10 @@ TEST(Remap, UnlimitedReconstructionRemapsLinearFieldsExactly) {
   auto v = Kokkos::create_mirror_view_and_copy(HostSpace(), box.state.v_c);
   double alpha_error = 0.0, velocity_error = 0.0;
   for (Index c = 0; c < box.setup.mesh.n_cells; ++c) {
-    alpha_error = std::max(alpha_error, std::abs(alpha(c, 0) - linearAlpha(target_centroid[c])));
+    alpha_error =
+        std::max(alpha_error, std::abs(alpha(c, 0) - linearAlpha(box.target_centroid[c])));
     velocity_error =
-        std::max(velocity_error, norm(loadVec3(v, c) - linearVelocity(target_centroid[c])));
+        std::max(velocity_error, norm(loadVec3(v, c) - linearVelocity(box.target_centroid[c])));
   }
   EXPECT_LT(alpha_error, 1e-13);
   EXPECT_LT(velocity_error, 1e-13);
@@ -183,10 +181,6 @@ TEST(Remap, UnlimitedReconstructionRemapsLinearFieldsExactly) {
 TEST(Remap, ConservesEveryMaterialMomentumAndTotalEnergyWithTheKineticEnergyFix) {
   for (bool fix : {true, false}) {
     TwoGasBox box;
-    box.geometry();
-    std::vector<double> target_volume;
-    std::vector<Vec3> target_centroid;
-    targetShapes(box.setup.mesh, target_volume, target_centroid);
     RemapControls controls;
     controls.kinetic_energy_fix = fix;
     RemapStep remap(box.setup.mesh, box.state, controls, box.timers);
@@ -204,7 +198,7 @@ TEST(Remap, ConservesEveryMaterialMomentumAndTotalEnergyWithTheKineticEnergyFix)
         4.0, 0.7);
     const MaterialTotals before = totalsOf(box.state, volumesOf(box.state));
     const RemapBoundaryFlux crossed = remap.apply();
-    const MaterialTotals after = totalsOf(box.state, target_volume);
+    const MaterialTotals after = totalsOf(box.state, box.target_volume);
     for (int i = 0; i < 5; ++i) EXPECT_EQ(crossed.v[i], 0.0);  // walls: nothing crosses
     for (int k = 0; k < 2; ++k) {
       EXPECT_NEAR(after.mass[k], before.mass[k], 1e-14 * before.mass[k]);
@@ -227,7 +221,6 @@ TEST(Remap, ConservesEveryMaterialMomentumAndTotalEnergyWithTheKineticEnergyFix)
 TEST(Remap, LimitedRemapOfAStepCreatesNoNewExtrema) {
   for (double beta : {1.0, 2.0}) {
     TwoGasBox box;
-    box.geometry();
     RemapControls controls;
     controls.beta_alpha = beta;
     RemapStep remap(box.setup.mesh, box.state, controls, box.timers);
