@@ -252,6 +252,18 @@ inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state,
               return gradient(up, v, 0) * lever.x + gradient(up, v, 1) * lever.y +
                      gradient(up, v, 2) * lever.z;
             };
+            // From a mixed cell, rho^k, e^k and V are taken constant: their
+            // slope terms would carry the cell's whole (alpha rho)_up while
+            // the swept region may hold a sliver of the material only (a
+            // solid's energy slope added to a gas-side region that holds 1e-5
+            // of it gives that trace any energy at all).
+            double rho_up = 0.0;
+            int materials_up = 0;
+            for (int m = 0; m < n_materials; ++m) {
+              rho_up += q(up, layout.mass(m));
+              materials_up += q(up, layout.alpha(m)) > 0.0;
+            }
+            const bool pure_up = materials_up == 1;
             // Materials: volume second order; mass and energy by the product
             // rule on the upwind reconstructions alpha, rho^k, e^k.
             double mass_flux_total = 0.0;
@@ -263,11 +275,13 @@ inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state,
               const double mass_up = q(up, layout.mass(m));
               if (!(alpha_up > 0.0 && mass_up > 0.0)) continue;  // nothing of m to carry
               if (up != c) includeSource(up, m);
-              const double rho_up = mass_up / alpha_up;
+              const double rho_up_m = mass_up / alpha_up;
               const double e_up = q(up, layout.energy(m)) / mass_up;
-              const double mass_flux = alpha_flux * rho_up + alpha_up * slope(layout.mass(m));
+              const double mass_flux =
+                  alpha_flux * rho_up_m + (pure_up ? alpha_up * slope(layout.mass(m)) : 0.0);
               integral[layout.mass(m)] += mass_flux;
-              integral[layout.energy(m)] += mass_flux * e_up + mass_up * slope(layout.energy(m));
+              integral[layout.energy(m)] +=
+                  mass_flux * e_up + (pure_up ? mass_up * slope(layout.energy(m)) : 0.0);
               mass_flux_total += mass_flux;
               const int column = layout.tensor_column[m];
               if (column < 0) continue;
@@ -279,15 +293,17 @@ inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state,
             // upwind velocity reconstruction: a new velocity is a weighted mean
             // of limited values (no new extrema), exact for linear V at
             // uniform density.
-            double rho_up = 0.0;
-            for (int m = 0; m < n_materials; ++m) rho_up += q(up, layout.mass(m));
             double kinetic_flux = 0.0;
             for (int d = 0; d < 3; ++d) {
               const int column = layout.momentum(d);
               const double v_up = q(up, column) / rho_up;
-              const double dv = slope(column);
+              const double dv = pure_up ? slope(column) : 0.0;
               integral[column] += mass_flux_total * v_up + rho_up * dv;
-              kinetic_flux += mass_flux_total * 0.5 * v_up * v_up + rho_up * v_up * dv;
+              // First order on purpose: the mass-weighted mean of |V_up|^2/2 is
+              // never below the |mean V|^2/2 of the momentum (convexity), so
+              // the kinetic-energy fix below only ever heats (no spurious
+              // cooling of a light material beside a fast, dense one).
+              kinetic_flux += mass_flux_total * 0.5 * v_up * v_up;
             }
             integral[layout.kinetic()] += kinetic_flux;
           }
