@@ -33,6 +33,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "bench_support.hpp"
 #include "kernels/constitutive.hpp"
 #include "kernels/eos.hpp"
 #include "src/floating_point.hpp"
@@ -48,10 +49,8 @@ using namespace lagremap;
 using Mat9View = DeviceView<Real* [9]>;  // a Mat3 per cell, row-major
 
 // The fixed dt of the timed full steps, as a fraction of the stable dt after
-// warm-up, and the number of steps between two (untimed) restores of the warm
-// state: as in bench_lagrange, the timed steps stay near the developed state.
+// warm-up (the restores between them: bench_support.hpp).
 constexpr double kBenchDtFraction = 0.2;
-constexpr long kStepsBetweenRestores = 50;
 
 // Reproducible uniform numbers in [0, 1) on any backend (splitmix64 of the
 // cell id and a stream number).
@@ -355,35 +354,8 @@ std::unique_ptr<SolidBench> g_taylor, g_beam;
 
 // One whole step as the driver takes it (advance(dt) at a fixed dt).
 void BM_SolidFullStep(benchmark::State& state, SolidBench* bench, int order) {
-  SolidBench& b = *bench;
-  b.restore();
-  Numerics numerics = b.numerics();
-  numerics.order = order;
-  LagrangeStep lagrange(b.mesh(), b.state(), numerics, b.timers());
-  const double dt = b.dtBench();
-  StepLimit limit = lagrange.computeGeometry();
-  long step = 0;
-  for (auto _ : state) {
-    if (step > 0 && step % kStepsBetweenRestores == 0) {  // untimed
-      b.restore();
-      limit = lagrange.computeGeometry();
-    }
-    ++step;
-    if (limit.val < dt) {
-      state.SkipWithError("the fixed benchmark dt exceeds the stable dt");
-      break;
-    }
-    Kokkos::Timer timer;
-    try {
-      limit = lagrange.advance(dt, step);
-    } catch (const RunFailure& failure) {
-      state.SkipWithError(failure.what());
-      break;
-    }
-    Kokkos::fence();
-    state.SetIterationTime(timer.seconds());
-  }
-  setRate(state, "cell_steps_per_second", b.cells());
+  bench::timedFullSteps(state, *bench, order);
+  setRate(state, "cell_steps_per_second", bench->cells());
 }
 
 // Removes `--cells=N` from argv (before benchmark::Initialize sees it); 0 if absent.

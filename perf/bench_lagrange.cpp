@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_support.hpp"
 #include "kernels/geometry.hpp"
 #include "kernels/nodal_solver.hpp"
 #include "src/floating_point.hpp"
@@ -32,9 +33,6 @@ namespace {
 
 using namespace lagremap;
 
-// Whole steps run from the warm snapshot before it is put back (untimed), so
-// the timed steps never drift far from the developed blast.
-constexpr long kStepsBetweenRestores = 50;
 // The fixed dt of the timed steps, as a fraction of the stable dt after warm-up.
 constexpr double kBenchDtFraction = 0.2;
 
@@ -235,34 +233,7 @@ void BM_UpdateAndGeometry(benchmark::State& state) {
 // One whole step as the driver takes it: advance(dt), whose last sweep also
 // gives the next step's geometry and dt candidates.
 void BM_FullStep(benchmark::State& state, int order) {
-  Bench& b = *g_bench;
-  b.restore();
-  Numerics numerics = b.numerics();
-  numerics.order = order;
-  LagrangeStep lagrange(b.mesh(), b.state(), numerics, b.timers());
-  const double dt = b.dtBench();
-  StepLimit limit = lagrange.computeGeometry();
-  long step = 0;
-  for (auto _ : state) {
-    if (step > 0 && step % kStepsBetweenRestores == 0) {  // untimed
-      b.restore();
-      limit = lagrange.computeGeometry();
-    }
-    ++step;
-    if (limit.val < dt) {
-      state.SkipWithError("the fixed benchmark dt exceeds the stable dt");
-      break;
-    }
-    Kokkos::Timer timer;
-    try {
-      limit = lagrange.advance(dt, step);
-    } catch (const RunFailure& failure) {
-      state.SkipWithError(failure.what());
-      break;
-    }
-    Kokkos::fence();
-    state.SetIterationTime(timer.seconds());
-  }
+  bench::timedFullSteps(state, *g_bench, order);
   setCellRate(state, "cell_steps_per_second");
 }
 
