@@ -79,4 +79,71 @@ KOKKOS_INLINE_FUNCTION double vertexLimiter(double delta, double center, const B
   return ratio < beta ? ratio : beta;
 }
 
+// Frobenius inner products: the metric of the frame-independent limiter below.
+KOKKOS_INLINE_FUNCTION double inner(double a, double b) {
+  return a * b;
+}
+KOKKOS_INLINE_FUNCTION double inner(const Vec3& a, const Vec3& b) {
+  return dot(a, b);
+}
+KOKKOS_INLINE_FUNCTION double inner(const SymMat3& a, const SymMat3& b) {
+  return ddot(a, b);
+}
+
+// Frame-independent limiter of a scalar, vector or tensor field (DESIGN §5
+// for a field that is not a scalar; README, Numerical method). At each vertex
+// the unlimited excursion delta_p = grad psi . (x_p - x_c) is measured against
+// the neighbours' jumps j_nb = psi_nb - psi_c projected on it,
+//   toward = max_nb max(j_nb : delta_p, 0),  away = max_nb max(-j_nb : delta_p, 0),
+// and phi is the largest value <= 1 with phi |delta_p|^2 <= f toward at every
+// vertex. Built from inner products only, a rotated field gets the same phi;
+// for a field along one fixed direction (a 1D run, transverse components at
+// round-off or not) it is the scalar limiter of that component exactly.
+//   f = 1: Barth-Jespersen (the vertex value may reach the neighbour's).
+//   plateau_guard: f = (1 + r^2)/2 with r = toward / away < 1. A cell whose
+//     value sits next to one neighbour's and far from the other's (a
+//     one-cell plateau, r -> 0) keeps its vertex value on its own side of the
+//     midpoint: the node's Riemann problem then still sees half of the small
+//     jump. With f = 1 it sees none, and the elastic precursor of a two-wave
+//     solid never leaves the plastic front. f -> 1 as r -> 1, so smooth
+//     profiles are limited as by Barth-Jespersen (in 1D, no limiting for
+//     r > 0.59; the 1D limiter function is r + r^3 near r = 0).
+template <class Field>
+KOKKOS_INLINE_FUNCTION double projectedLimiter(const Field jumps[], int n_jumps,
+                                               const Field excursions[8], bool plateau_guard) {
+  double limiter = 1.0;
+  for (int p = 0; p < 8; ++p) {
+    const double length2 = inner(excursions[p], excursions[p]);
+    if (!(length2 > 0.0)) continue;
+    double toward = 0.0, away = 0.0;
+    for (int j = 0; j < n_jumps; ++j) {
+      const double along = inner(jumps[j], excursions[p]);
+      toward = along > toward ? along : toward;
+      away = -along > away ? -along : away;
+    }
+    double reach = toward;
+    if (plateau_guard && toward < away) {
+      const double ratio = toward / away;
+      reach = 0.5 * (1.0 + ratio * ratio) * toward;
+    }
+    // one more division only where this vertex lowers phi
+    if (reach < limiter * length2) limiter = reach / length2;
+  }
+  return limiter;
+}
+
+// Jump of a symmetric tensor to its mirror image across a plane of unit normal
+// n (the wall ghost of the stencil): R T R - T with R = I - 2 n (x) n, i.e.
+//   -2 (n (x) Tn + Tn (x) n) + 4 (n.Tn) n (x) n.
+KOKKOS_INLINE_FUNCTION SymMat3 mirrorJump(const SymMat3& t, const Vec3& n) {
+  const Vec3 tn = t * n;
+  const double nn4 = 4.0 * dot(n, tn);
+  return {nn4 * n.x * n.x - 4.0 * n.x * tn.x,
+          nn4 * n.y * n.y - 4.0 * n.y * tn.y,
+          nn4 * n.z * n.z - 4.0 * n.z * tn.z,
+          nn4 * n.x * n.y - 2.0 * (n.x * tn.y + tn.x * n.y),
+          nn4 * n.y * n.z - 2.0 * (n.y * tn.z + tn.y * n.z),
+          nn4 * n.x * n.z - 2.0 * (n.x * tn.z + tn.x * n.z)};
+}
+
 }  // namespace lagremap
