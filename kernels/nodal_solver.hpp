@@ -80,7 +80,9 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
         for (int p = 0; p < 8; ++p) {
           v_node[p] = v_cell;
           p_node[p] = p_cell;
-          sigma_node[p] = sigma_cell;
+        }
+        if (solid) {
+          for (int p = 0; p < 8; ++p) sigma_node[p] = sigma_cell;
         }
         if (second_order) {
           Vec3 x[8];
@@ -89,11 +91,12 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
           LeastSquares lsq;
           Vec3 rhs_v[3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, rhs_p{0, 0, 0};
           Vec3 rhs_sigma[6] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
-          Vec3 dv_nb[6];
-          double dp_nb[6];
+          // neighbour jumps for the limiters; a free side leaves a zero jump
+          Vec3 dv_nb[6] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
           SymMat3 dsigma_nb[6];
-          int n_nb = 0;
+          Bounds pb(p_cell);
           for (int f = 0; f < 6; ++f) {
+            if (solid) dsigma_nb[f] = identitySym(0.0);
             const Index nb = neighbors(c, f);
             Vec3 dx, dv, normal;
             double dp = 0.0;
@@ -114,7 +117,7 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
             rhs_v[0] += dv.x * dx;
             rhs_v[1] += dv.y * dx;
             rhs_v[2] += dv.z * dx;
-            dv_nb[n_nb] = dv;
+            dv_nb[f] = dv;
             if (solid) {
               rhs_sigma[0] += dsigma.xx * dx;
               rhs_sigma[1] += dsigma.yy * dx;
@@ -122,42 +125,53 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
               rhs_sigma[3] += dsigma.xy * dx;
               rhs_sigma[4] += dsigma.yz * dx;
               rhs_sigma[5] += dsigma.xz * dx;
-              dsigma_nb[n_nb] = dsigma;
+              dsigma_nb[f] = dsigma;
             } else {
               rhs_p += dp * dx;
-              dp_nb[n_nb] = dp;
+              pb.include(p_cell + dp);
             }
-            ++n_nb;
           }
           const SymMat3 inv = lsq.solver();
-          const Vec3 grad_vx = inv * rhs_v[0], grad_vy = inv * rhs_v[1], grad_vz = inv * rhs_v[2];
+          Vec3 offsets[8];
+          for (int p = 0; p < 8; ++p) offsets[p] = x[p] - centroid;
+          const Vec3 grad_v[3] = {inv * rhs_v[0], inv * rhs_v[1], inv * rhs_v[2]};
           Vec3 dv_node[8];
-          LAGREMAP_UNROLL
+          double length2[8];
           for (int p = 0; p < 8; ++p) {
-            const Vec3 d = x[p] - centroid;
-            dv_node[p] = Vec3{dot(grad_vx, d), dot(grad_vy, d), dot(grad_vz, d)};
+            dv_node[p] = Vec3{dot(grad_v[0], offsets[p]), dot(grad_v[1], offsets[p]),
+                              dot(grad_v[2], offsets[p])};
+            length2[p] = dot(dv_node[p], dv_node[p]);
           }
-          const double phi_v = projectedLimiter(dv_nb, n_nb, dv_node, solid);
+          const double phi_v = solid ? projectedLimiter<true>(dv_nb, dv_node, length2)
+                                     : projectedLimiter<false>(dv_nb, dv_node, length2);
           for (int p = 0; p < 8; ++p) v_node[p] += phi_v * dv_node[p];
           if (solid) {
             Vec3 grad_sigma[6];
             for (int i = 0; i < 6; ++i) grad_sigma[i] = inv * rhs_sigma[i];
-            SymMat3 dsigma_node[8];
-            LAGREMAP_UNROLL
+            Vec3 pulled[6];
+            SymMat3 gram;
+            pullBack(grad_sigma, dsigma_nb, pulled, gram);
+            for (int p = 0; p < 8; ++p) length2[p] = dot(offsets[p], gram * offsets[p]);
+            const double phi_sigma = projectedLimiter<true>(pulled, offsets, length2);
+            for (int i = 0; i < 6; ++i) grad_sigma[i] = phi_sigma * grad_sigma[i];
             for (int p = 0; p < 8; ++p) {
-              const Vec3 d = x[p] - centroid;
-              dsigma_node[p] = {dot(grad_sigma[0], d), dot(grad_sigma[1], d),
-                                dot(grad_sigma[2], d), dot(grad_sigma[3], d),
-                                dot(grad_sigma[4], d), dot(grad_sigma[5], d)};
+              const Vec3& d = offsets[p];
+              sigma_node[p] +=
+                  SymMat3{dot(grad_sigma[0], d), dot(grad_sigma[1], d), dot(grad_sigma[2], d),
+                          dot(grad_sigma[3], d), dot(grad_sigma[4], d), dot(grad_sigma[5], d)};
             }
-            const double phi_sigma = projectedLimiter(dsigma_nb, n_nb, dsigma_node, true);
-            for (int p = 0; p < 8; ++p) sigma_node[p] += phi_sigma * dsigma_node[p];
           } else {
+            // a scalar: Barth-Jespersen in its two-division form (the same phi
+            // as projectedLimiter<false>)
             const Vec3 grad_p = inv * rhs_p;
             double dp_node[8];
+            VertexExcursion excursion;
             LAGREMAP_UNROLL
-            for (int p = 0; p < 8; ++p) dp_node[p] = dot(grad_p, x[p] - centroid);
-            const double phi_p = projectedLimiter(dp_nb, n_nb, dp_node, false);
+            for (int p = 0; p < 8; ++p) {
+              dp_node[p] = dot(grad_p, offsets[p]);
+              excursion.include(dp_node[p]);
+            }
+            const double phi_p = cellLimiter(excursion, p_cell, pb, 1.0);
             for (int p = 0; p < 8; ++p) p_node[p] += phi_p * dp_node[p];
           }
         }

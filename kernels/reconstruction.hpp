@@ -79,57 +79,85 @@ KOKKOS_INLINE_FUNCTION double vertexLimiter(double delta, double center, const B
   return ratio < beta ? ratio : beta;
 }
 
-// Frobenius inner products: the metric of the frame-independent limiter below.
+// Inner products of the fields projectedLimiter works on.
 KOKKOS_INLINE_FUNCTION double inner(double a, double b) {
   return a * b;
 }
 KOKKOS_INLINE_FUNCTION double inner(const Vec3& a, const Vec3& b) {
   return dot(a, b);
 }
-KOKKOS_INLINE_FUNCTION double inner(const SymMat3& a, const SymMat3& b) {
-  return ddot(a, b);
-}
 
-// Frame-independent limiter of a scalar, vector or tensor field (DESIGN §5
-// for a field that is not a scalar; README, Numerical method). At each vertex
-// the unlimited excursion delta_p = grad psi . (x_p - x_c) is measured against
-// the neighbours' jumps j_nb = psi_nb - psi_c projected on it,
+// Frame-independent limiter of a vector or tensor field psi (DESIGN §5 for a
+// field that is not a scalar; README, Numerical method). At each vertex the
+// unlimited excursion delta_p = G d_p (G the least-squares gradient,
+// d_p = x_p - x_c) is measured against the neighbours' jumps
+// j_nb = psi_nb - psi_c projected on it (Frobenius inner product ":"),
 //   toward = max_nb max(j_nb : delta_p, 0),  away = max_nb max(-j_nb : delta_p, 0),
 // and phi is the largest value <= 1 with phi |delta_p|^2 <= f toward at every
 // vertex. Built from inner products only, a rotated field gets the same phi;
 // for a field along one fixed direction (a 1D run, transverse components at
-// round-off or not) it is the scalar limiter of that component exactly.
+// round-off or not) it is Barth-Jespersen on that component exactly.
 //   f = 1: Barth-Jespersen (the vertex value may reach the neighbour's).
 //   plateau_guard: f = (1 + r^2)/2 with r = toward / away < 1. A cell whose
-//     value sits next to one neighbour's and far from the other's (a
-//     one-cell plateau, r -> 0) keeps its vertex value on its own side of the
-//     midpoint: the node's Riemann problem then still sees half of the small
-//     jump. With f = 1 it sees none, and the elastic precursor of a two-wave
-//     solid never leaves the plastic front. f -> 1 as r -> 1, so smooth
-//     profiles are limited as by Barth-Jespersen (in 1D, no limiting for
-//     r > 0.59; the 1D limiter function is r + r^3 near r = 0).
-template <class Field>
-KOKKOS_INLINE_FUNCTION double projectedLimiter(const Field jumps[], int n_jumps,
-                                               const Field excursions[8], bool plateau_guard) {
+//     value sits next to one neighbour's and far from the other's (a one-cell
+//     plateau, r -> 0) keeps its vertex value on its own side of the
+//     midpoint, so the node's Riemann problem still sees half of the small
+//     jump; with f = 1 it sees none, and the elastic precursor of a two-wave
+//     solid never leaves the plastic front. f -> 1 as r -> 1: smooth profiles
+//     are limited as by Barth-Jespersen (in 1D, not at all for r > 0.59; the
+//     1D limiter function is r + r^3 near r = 0).
+// Arguments: along[j][p] = j_nb : delta_p is inner(jumps[j], directions[p])
+// and length2[p] = |delta_p|^2. A vector passes its jumps and excursions
+// (directions = delta_p); a tensor passes the pulled-back form of pullBack(),
+// directions = d_p, whose cost does not grow with the field's six components.
+// A missing neighbour is a zero jump (it changes nothing): fixed trip counts.
+template <bool plateau_guard, class Field>
+KOKKOS_INLINE_FUNCTION double projectedLimiter(const Field jumps[6], const Field directions[8],
+                                               const double length2[8]) {
   double limiter = 1.0;
+  LAGREMAP_UNROLL
   for (int p = 0; p < 8; ++p) {
-    const double length2 = inner(excursions[p], excursions[p]);
-    if (!(length2 > 0.0)) continue;
     double toward = 0.0, away = 0.0;
-    for (int j = 0; j < n_jumps; ++j) {
-      const double along = inner(jumps[j], excursions[p]);
+    LAGREMAP_UNROLL
+    for (int j = 0; j < 6; ++j) {
+      const double along = inner(jumps[j], directions[p]);
       toward = along > toward ? along : toward;
-      away = -along > away ? -along : away;
+      if (plateau_guard) away = -along > away ? -along : away;
     }
     double reach = toward;
     if (plateau_guard && toward < away) {
       const double ratio = toward / away;
       reach = 0.5 * (1.0 + ratio * ratio) * toward;
     }
-    // one more division only where this vertex lowers phi
-    if (reach < limiter * length2) limiter = reach / length2;
+    // a division only where this vertex lowers phi (never for length2 = 0)
+    if (reach < limiter * length2[p]) limiter = reach / length2[p];
   }
   return limiter;
+}
+
+// w_nb = G^T j_nb and G^T G for a vector field, G's rows being the gradients
+// of its components.
+KOKKOS_INLINE_FUNCTION void pullBack(const Vec3 gradients[3], const Vec3 jumps[6], Vec3 pulled[6],
+                                     SymMat3& gram) {
+  gram = outerSelf(gradients[0], 1.0) + outerSelf(gradients[1], 1.0) + outerSelf(gradients[2], 1.0);
+  for (int j = 0; j < 6; ++j) {
+    pulled[j] = jumps[j].x * gradients[0] + jumps[j].y * gradients[1] + jumps[j].z * gradients[2];
+  }
+}
+
+// The same for a symmetric tensor (components xx, yy, zz, xy, yz, xz); the
+// off-diagonal ones count twice in the Frobenius product.
+KOKKOS_INLINE_FUNCTION void pullBack(const Vec3 gradients[6], const SymMat3 jumps[6],
+                                     Vec3 pulled[6], SymMat3& gram) {
+  gram = outerSelf(gradients[0], 1.0) + outerSelf(gradients[1], 1.0) +
+         outerSelf(gradients[2], 1.0) + outerSelf(gradients[3], 2.0) +
+         outerSelf(gradients[4], 2.0) + outerSelf(gradients[5], 2.0);
+  for (int j = 0; j < 6; ++j) {
+    const SymMat3& t = jumps[j];
+    pulled[j] = t.xx * gradients[0] + t.yy * gradients[1] + t.zz * gradients[2] +
+                (2.0 * t.xy) * gradients[3] + (2.0 * t.yz) * gradients[4] +
+                (2.0 * t.xz) * gradients[5];
+  }
 }
 
 // Jump of a symmetric tensor to its mirror image across a plane of unit normal
