@@ -189,13 +189,13 @@ double stressWork(const CellNodesView::HostMirror& cell_nodes, const StressSnaps
 //  - total energy is conserved to round-off (the audit of DESIGN §3);
 //  - the strain energy sum_c v0 W(B, J) equals the work the cell stresses did
 //    along the discrete motion, so B, J and the stress of DESIGN §4 agree
-//    (measured 6.7e-6 of the initial kinetic energy, an error second order in
+//    (measured 6.1e-6 of the initial kinetic energy, an error second order in
 //    dt; the common volumetric energy kappa/2 (J-1)^2 in place of DESIGN's
 //    would miss it by 5.8e-5, so the check sees W's form);
 //  - what the internal energy holds beyond it, m (e - e0) - v0 W summed over
 //    the cells, is the heat of the nodal solver's impedance terms, which never
-//    decreases. It is not small on such coarse meshes: 0.48 of the kinetic
-//    energy after 40 steps at 8^3, 0.14 after the same time at 16^3 (with the
+//    decreases. It is not small on such coarse meshes: 0.52 of the kinetic
+//    energy after 40 steps at 8^3, 0.19 after the same time at 16^3 (with the
 //    stress constant over the cell, as before the second-order stress of
 //    README's Numerical method: 0.67 and 0.38).
 TEST(NeoHookeanRun, StrainEnergyIsTheStressWorkAndTheRestIsHeat) {
