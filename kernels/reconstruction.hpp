@@ -142,13 +142,15 @@ KOKKOS_INLINE_FUNCTION double projectedLimiter(const Field jumps[6], const Field
       toward = along[j] > toward ? along[j] : toward;
       if (plateau_guard) away = -along[j] > away ? -along[j] : away;
     }
-    double reach = toward;
+    // phi <= reach / length2, with the guard's f = (1 + r^2)/2 multiplied
+    // out (r = toward/away): one division, and only where this vertex lowers
+    // phi (never for length2 = 0)
+    double reach = toward, length2_scaled = length2[p];
     if (plateau_guard && toward < away) {
-      const double ratio = toward / away;
-      reach = 0.5 * (1.0 + ratio * ratio) * toward;
+      reach = 0.5 * toward * (away * away + toward * toward);
+      length2_scaled *= away * away;
     }
-    // a division only where this vertex lowers phi (never for length2 = 0)
-    if (reach < limiter * length2[p]) limiter = reach / length2[p];
+    if (reach < limiter * length2_scaled) limiter = reach / length2_scaled;
   }
   return limiter;
 }
