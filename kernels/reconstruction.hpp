@@ -79,4 +79,112 @@ KOKKOS_INLINE_FUNCTION double vertexLimiter(double delta, double center, const B
   return ratio < beta ? ratio : beta;
 }
 
+// Inner products of the fields projectedLimiter works on.
+KOKKOS_INLINE_FUNCTION double inner(double a, double b) {
+  return a * b;
+}
+KOKKOS_INLINE_FUNCTION double inner(const Vec3& a, const Vec3& b) {
+  return dot(a, b);
+}
+
+// Frame-independent limiter of a vector or tensor field psi (DESIGN §5 for a
+// field that is not a scalar; README, Numerical method). At each vertex p the
+// unlimited excursion delta_p = G d_p (G the least-squares gradient,
+// d_p = x_p - x_c) is measured against the jumps j = psi_nb - psi_c projected
+// on it (Frobenius inner product ":"), over the face neighbours and, with
+// vertex_sums, standing for the edge and corner neighbours at the vertex, the
+// sums of the jumps of the faces holding p (exact for a linear field on a
+// parallelepiped mesh):
+//   toward = max_j max(j : delta_p, 0),  away = max_j max(-j : delta_p, 0);
+// phi is the largest value <= 1 with phi |delta_p|^2 <= f toward at every
+// vertex. Built from inner products only, a rotated field gets the same phi;
+// for a field along one fixed direction (a 1D run, transverse components at
+// round-off or not) it is Barth-Jespersen on that component exactly. With
+// face neighbours alone, a field whose jumps along x, y and z are orthogonal
+// (any smooth 3D velocity field) is limited to 2/3 even where linear.
+//   f = 1: Barth-Jespersen (the vertex value may reach the neighbour's).
+//   plateau_guard: f = (1 + r^2)/2 with r = toward / away < 1. A cell whose
+//     value sits next to one neighbour's and far from the other's (a one-cell
+//     plateau, r -> 0) keeps its vertex value on its own side of the
+//     midpoint, so the node's Riemann problem still sees half of the small
+//     jump; with f = 1 it sees none, and the elastic precursor of a two-wave
+//     solid never leaves the plastic front. f -> 1 as r -> 1: smooth profiles
+//     are limited as by Barth-Jespersen (in 1D, not at all for r > 0.59; the
+//     1D limiter function is r + r^3 near r = 0).
+// Arguments: j : delta_p = inner(jumps[f], directions[p]) for the neighbour
+// across local face f (VTK order: 0 x-, 1 x+, 2 y-, 3 y+, 4 z-, 5 z+; a
+// missing neighbour is a zero jump, which changes nothing) and
+// length2[p] = |delta_p|^2. A vector passes its jumps and excursions
+// (directions = delta_p); a tensor passes the pulled-back form of pullBack()
+// with directions = d_p, whose cost does not grow with its six components.
+template <bool plateau_guard, bool vertex_sums, class Field>
+KOKKOS_INLINE_FUNCTION double projectedLimiter(const Field jumps[6], const Field directions[8],
+                                               const double length2[8]) {
+  double limiter = 1.0;
+  LAGREMAP_UNROLL
+  for (int p = 0; p < 8; ++p) {
+    double along[10];
+    LAGREMAP_UNROLL
+    for (int f = 0; f < 6; ++f) along[f] = inner(jumps[f], directions[p]);
+    if (vertex_sums) {
+      // the faces holding vertex p in the VTK hexahedron
+      const double fx = along[((p ^ (p >> 1)) & 1) ? 1 : 0];
+      const double fy = along[(p & 2) ? 3 : 2];
+      const double fz = along[(p & 4) ? 5 : 4];
+      along[6] = fx + fy;
+      along[7] = fy + fz;
+      along[8] = fx + fz;
+      along[9] = fx + fy + fz;
+    }
+    double toward = 0.0, away = 0.0;
+    LAGREMAP_UNROLL
+    for (int j = 0; j < (vertex_sums ? 10 : 6); ++j) {
+      toward = along[j] > toward ? along[j] : toward;
+      if (plateau_guard) away = -along[j] > away ? -along[j] : away;
+    }
+    // phi <= reach / length2, with the guard's f = (1 + r^2)/2 multiplied
+    // out (r = toward/away): one division, and only where this vertex lowers
+    // phi (never for length2 = 0)
+    double reach = toward, length2_scaled = length2[p];
+    if (plateau_guard && toward < away) {
+      reach = 0.5 * toward * (away * away + toward * toward);
+      length2_scaled *= away * away;
+    }
+    if (reach < limiter * length2_scaled) limiter = reach / length2_scaled;
+  }
+  return limiter;
+}
+
+// Pulled-back form of a symmetric tensor field for projectedLimiter: with
+// G's rows the gradients of the components xx, yy, zz, xy, yz, xz (the
+// off-diagonal ones count twice in the Frobenius product),
+// j : delta_p = (G^T j) . d_p and |delta_p|^2 = d_p . (G^T G) d_p; returns the
+// pulled-back jumps w = G^T j and the Gram matrix G^T G.
+KOKKOS_INLINE_FUNCTION void pullBack(const Vec3 gradients[6], const SymMat3 jumps[6],
+                                     Vec3 pulled[6], SymMat3& gram) {
+  gram = outerSelf(gradients[0], 1.0) + outerSelf(gradients[1], 1.0) +
+         outerSelf(gradients[2], 1.0) + outerSelf(gradients[3], 2.0) +
+         outerSelf(gradients[4], 2.0) + outerSelf(gradients[5], 2.0);
+  for (int j = 0; j < 6; ++j) {
+    const SymMat3& t = jumps[j];
+    pulled[j] = t.xx * gradients[0] + t.yy * gradients[1] + t.zz * gradients[2] +
+                (2.0 * t.xy) * gradients[3] + (2.0 * t.yz) * gradients[4] +
+                (2.0 * t.xz) * gradients[5];
+  }
+}
+
+// Jump of a symmetric tensor to its mirror image across a plane of unit normal
+// n (the wall ghost of the stencil): R T R - T with R = I - 2 n (x) n, i.e.
+//   -2 (n (x) Tn + Tn (x) n) + 4 (n.Tn) n (x) n.
+KOKKOS_INLINE_FUNCTION SymMat3 mirrorJump(const SymMat3& t, const Vec3& n) {
+  const Vec3 tn = t * n;
+  const double nn4 = 4.0 * dot(n, tn);
+  return {nn4 * n.x * n.x - 4.0 * n.x * tn.x,
+          nn4 * n.y * n.y - 4.0 * n.y * tn.y,
+          nn4 * n.z * n.z - 4.0 * n.z * tn.z,
+          nn4 * n.x * n.y - 2.0 * (n.x * tn.y + tn.x * n.y),
+          nn4 * n.y * n.z - 2.0 * (n.y * tn.z + tn.y * n.z),
+          nn4 * n.x * n.z - 2.0 * (n.x * tn.z + tn.x * n.z)};
+}
+
 }  // namespace lagremap
