@@ -33,6 +33,8 @@ TEST(CommandLine, MalformedInputGivesExitCodeTwoAndOneLine) {
   const std::vector<BadInput> table = {
       {"", "--problem is required"},
       {"--problem nope", "unknown problem 'nope'"},
+      {"--problem shell --mode remap", "shell: remap mode"},
+      {"--problem sod --mode remap --set remap.beta=3", "remap.beta must be in [1, 2]"},
       {"--problem sod --scale -1", "--scale"},
       {"--problem sod --scale abc", "--scale"},
       {"--problem sod --set nokey=1", "unknown key 'nokey'"},
