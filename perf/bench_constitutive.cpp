@@ -358,22 +358,6 @@ void BM_SolidFullStep(benchmark::State& state, SolidBench* bench, int order) {
   setRate(state, "cell_steps_per_second", bench->cells());
 }
 
-// Removes `--cells=N` from argv (before benchmark::Initialize sees it); 0 if absent.
-long takeCellsFlag(int& argc, char* argv[]) {
-  long n = 0;
-  int kept = 1;
-  for (int i = 1; i < argc; ++i) {
-    if (std::strncmp(argv[i], "--cells=", 8) == 0) {
-      n = std::atol(argv[i] + 8);
-    } else {
-      argv[kept++] = argv[i];
-    }
-  }
-  argc = kept;
-  argv[argc] = nullptr;
-  return n;
-}
-
 void registerBenchmarks() {
   auto manual = [](benchmark::internal::Benchmark* bench) {
     bench->UseManualTime()->Unit(benchmark::kMillisecond);
@@ -396,7 +380,7 @@ int main(int argc, char* argv[]) {
   Kokkos::ScopeGuard kokkos(argc, argv);
   long cells = 262144;
   if (const char* env = std::getenv("LAGREMAP_BENCH_CELLS")) cells = std::atol(env);
-  if (const long flag = takeCellsFlag(argc, argv)) cells = flag;
+  if (const long flag = bench::takeFlag(argc, argv, "--cells=")) cells = flag;
   double scale = 4.0;
   if (const char* env = std::getenv("LAGREMAP_BENCH_SOLID_SCALE")) scale = std::atof(env);
   long warmup_steps = 40;

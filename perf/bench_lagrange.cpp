@@ -282,22 +282,6 @@ void BM_LagrangeRemapStep(benchmark::State& state) {
   setCellRate(state, "cell_steps_per_second");
 }
 
-// Removes `--n=N` from argv (before benchmark::Initialize sees it); 0 if absent.
-int takeSizeFlag(int& argc, char* argv[]) {
-  int n = 0;
-  int kept = 1;
-  for (int i = 1; i < argc; ++i) {
-    if (std::strncmp(argv[i], "--n=", 4) == 0) {
-      n = std::atoi(argv[i] + 4);
-    } else {
-      argv[kept++] = argv[i];
-    }
-  }
-  argc = kept;
-  argv[argc] = nullptr;
-  return n;
-}
-
 void registerBenchmarks() {
   auto manual = [](benchmark::internal::Benchmark* bench) {
     bench->UseManualTime()->Unit(benchmark::kMillisecond);
@@ -326,7 +310,7 @@ int main(int argc, char* argv[]) {
   Kokkos::ScopeGuard kokkos(argc, argv);
   int n = 60;
   if (const char* env = std::getenv("LAGREMAP_BENCH_N")) n = std::atoi(env);
-  if (const int flag = takeSizeFlag(argc, argv)) n = flag;
+  if (const int flag = bench::takeFlag(argc, argv, "--n=")) n = flag;
   long warmup_steps = 40;
   if (const char* env = std::getenv("LAGREMAP_BENCH_WARMUP")) warmup_steps = std::atol(env);
   if (n < 2 || warmup_steps < 0) {

@@ -4,6 +4,8 @@
 #include <benchmark/benchmark.h>
 
 #include <Kokkos_Core.hpp>
+#include <cstdlib>
+#include <cstring>
 
 #include "src/lagrange_step.hpp"
 
@@ -46,6 +48,24 @@ void timedFullSteps(benchmark::State& state, Warm& b, int order) {
     Kokkos::fence();
     state.SetIterationTime(timer.seconds());
   }
+}
+
+// Removes `<prefix>N` (e.g. "--n=") from argv before benchmark::Initialize
+// sees it; returns N, 0 if absent.
+inline long takeFlag(int& argc, char* argv[], const char* prefix) {
+  const std::size_t length = std::strlen(prefix);
+  long value = 0;
+  int kept = 1;
+  for (int i = 1; i < argc; ++i) {
+    if (std::strncmp(argv[i], prefix, length) == 0) {
+      value = std::atol(argv[i] + length);
+    } else {
+      argv[kept++] = argv[i];
+    }
+  }
+  argc = kept;
+  argv[argc] = nullptr;
+  return value;
 }
 
 }  // namespace lagremap::bench
