@@ -36,6 +36,38 @@ struct CellThermo {
   bool valid = true;                // some material present, every one inside its EOS's domain
 };
 
+// Volume fractions of a mixed cell at the end of a Lagrangian stage: the
+// cell's volume change since the start of the step is shared among its
+// materials in proportion to their compressibility alpha^k / (rho^k a_k^2)
+// (equal pressure increments) instead of by volume fraction (equal strain):
+//   alpha^k v = alpha^k_n v_n + (w^k_n / sum w_n) (v - v_n).
+// Under equal strain a solid sharing a cell with gas is compressed or
+// stretched as much as the gas, to GPa in a step (README, Numerical method).
+KOKKOS_INLINE_FUNCTION void shareVolumeChange(const State& s, Index c, double volume) {
+  double weight_sum = 0.0;
+  int present = 0;
+  for (int k = 0; k < s.n_materials; ++k) {
+    present += s.alpha_ck0(c, k) > 0.0;
+    weight_sum += s.w_ck0(c, k);
+  }
+  if (present < 2 || !(weight_sum > 0.0)) return;
+  const double volume_start = s.vol_c0(c);
+  double alpha_sum = 0.0;
+  for (int k = 0; k < s.n_materials; ++k) {
+    const double alpha_start = s.alpha_ck0(c, k);
+    if (!(alpha_start > 0.0)) continue;
+    const double material_volume =
+        alpha_start * volume_start + (s.w_ck0(c, k) / weight_sum) * (volume - volume_start);
+    // a material cannot be squeezed out: keep a sliver of its start volume
+    const double alpha = material_volume > 1e-3 * alpha_start * volume_start
+                             ? material_volume / volume
+                             : 1e-3 * alpha_start * volume_start / volume;
+    s.alpha_ck(c, k) = alpha;
+    alpha_sum += alpha;
+  }
+  for (int k = 0; k < s.n_materials; ++k) s.alpha_ck(c, k) /= alpha_sum;
+}
+
 KOKKOS_INLINE_FUNCTION CellThermo cellThermo(const State& s, Index c, double volume,
                                              double e_cell) {
   CellThermo mix;
@@ -74,6 +106,7 @@ KOKKOS_INLINE_FUNCTION CellThermo cellThermo(const State& s, Index c, double vol
     mix.valid = mix.valid && thermo.valid;
     mix.min_sound_speed2 = a2 < mix.min_sound_speed2 ? a2 : mix.min_sound_speed2;
     s.p_ck(c, k) = thermo.pressure;
+    s.w_ck(c, k) = thermo.sound_speed2 > 0.0 ? alpha / (rho * thermo.sound_speed2) : 0.0;
     if (material.strength == StrengthKind::NeoHookean) {
       // Hyper-elastic deviator from B (DESIGN §4), J = rho0 / rho^k.
       const SymMat3 S = neoHookeanDeviator(loadSym(s.B_ck, c, k), material.rho0 / rho, mu);
@@ -99,10 +132,12 @@ KOKKOS_INLINE_FUNCTION CellThermo cellThermo(const State& s, Index c, double vol
 
 // Geometry, thermodynamic closure and corner impedance of one cell, and its
 // time-step candidates folded into `best` (DESIGN §2-3).
+// `end_of_stage`: the nodes have just moved in a Lagrangian stage, so a mixed
+// cell's volume change is shared among its materials first.
 KOKKOS_INLINE_FUNCTION void cellGeometryAndThermo(const CellNodesView& cell_nodes,
                                                   const Vec3View& x_n, const State& s,
                                                   const TimeStepControls& controls, Index c,
-                                                  StepLimit& best) {
+                                                  StepLimit& best, bool end_of_stage = false) {
   Vec3 x[8];
   gatherCellNodes(cell_nodes, x_n, c, x);
   hex::CellGeometry geo;
@@ -116,6 +151,7 @@ KOKKOS_INLINE_FUNCTION void cellGeometryAndThermo(const CellNodesView& cell_node
   const Vec3 v = loadVec3(s.v_c, c);
   const double rho = s.m_c(c) / volume;
   const double e = s.E_c(c) - 0.5 * dot(v, v);
+  if (end_of_stage && s.n_materials > 1) shareVolumeChange(s, c, volume);
   const CellThermo thermo = cellThermo(s, c, volume, e);
   const double aL = thermo.aL2 > 0.0 ? math::sqrt(thermo.aL2) : 0.0;
   const double aT = math::sqrt(thermo.aT2);

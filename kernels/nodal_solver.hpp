@@ -299,15 +299,18 @@ KOKKOS_INLINE_FUNCTION Mat3 velocityGradient(const CellNodesView& cell_nodes, co
   return gradient;
 }
 
-// sigma^k : L = -p^k tr(L) + S^k : L, the power per unit volume of material k's
-// stress (pressure and deviator of the stage start).
-KOKKOS_INLINE_FUNCTION double stressPower(const State& s, Index c, int k, const Mat3& L) {
-  double power = -s.p_ck(c, k) * (L.m[0][0] + L.m[1][1] + L.m[2][2]);
+// Power of material k's stress per unit cell volume (stage-start pressure and
+// deviator): -p^k share^k tr(L) + alpha^k S^k : L, with share^k its part of
+// the cell's volume change (shareVolumeChange; alpha^k under equal strain)
+// and the deviatoric strain rate common to all materials.
+KOKKOS_INLINE_FUNCTION double stressPower(const State& s, Index c, int k, const Mat3& L,
+                                          double volume_share) {
+  double power = -s.p_ck(c, k) * volume_share * (L.m[0][0] + L.m[1][1] + L.m[2][2]);
   if (s.materials(k).strength != StrengthKind::None) {
     const SymMat3 S = loadSym(s.S_ck, c, k);
-    power += S.xx * L.m[0][0] + S.yy * L.m[1][1] + S.zz * L.m[2][2] +
-             S.xy * (L.m[0][1] + L.m[1][0]) + S.yz * (L.m[1][2] + L.m[2][1]) +
-             S.xz * (L.m[0][2] + L.m[2][0]);
+    power += s.alpha_ck(c, k) * (S.xx * L.m[0][0] + S.yy * L.m[1][1] + S.zz * L.m[2][2] +
+                                 S.xy * (L.m[0][1] + L.m[1][0]) + S.yz * (L.m[1][2] + L.m[2][1]) +
+                                 S.xz * (L.m[0][2] + L.m[2][0]));
   }
   return power;
 }
@@ -360,9 +363,17 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
   if (!mixed && !s.has_solids) return;
   const Mat3 gradient = velocityGradient(cell_nodes, s, c);
   const double threshold = mixed ? s.alpha_trace : 0.0;
-  // W^k = dt alpha^k v sigma^k : L, v the stage-start volume of L's definition
+  // W^k = dt v (-p^k share^k tr L + alpha^k S^k : L), v the stage-start volume
+  // of L's definition
   const double volume = s.vol_c(c);
   double dissipation = 0.0, active_alpha = 0.0, active_mass = 0.0, de_cell = 0.0;
+  double weight_sum = 0.0;  // compressibility weights of the step start
+  for (int k = 0; k < s.n_materials && mixed; ++k) {
+    if (s.alpha_ck(c, k) > 0.0) weight_sum += s.w_ck0(c, k);
+  }
+  auto volumeShare = [&](int k) {
+    return weight_sum > 0.0 ? s.w_ck0(c, k) / weight_sum : s.alpha_ck(c, k);
+  };
   if (mixed) {
     const Vec3 v0 = loadVec3(s.v_c0, c);
     de_cell = e_new - (s.E_c0(c) - 0.5 * dot(v0, v0));
@@ -373,7 +384,7 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
       if (alpha >= threshold) {
         active_alpha += alpha;
         active_mass += s.m_ck(c, k);
-        dissipation -= dt_stage * alpha * volume * stressPower(s, c, k, gradient);
+        dissipation -= dt_stage * volume * stressPower(s, c, k, gradient, volumeShare(k));
       }
     }
   }
@@ -386,7 +397,7 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
     if (mixed && trace) {
       s.e_ck(c, k) = s.e_ck0(c, k);
     } else if (mixed) {
-      const double work = dt_stage * alpha * volume * stressPower(s, c, k, gradient);
+      const double work = dt_stage * volume * stressPower(s, c, k, gradient, volumeShare(k));
       // D >= 0 is heat, shared by volume fraction (DESIGN §3). A negative D
       // is the scheme's round-off/splitting error, not physics: shared by
       // volume it would cool a light gas beside a dense solid far below zero
@@ -462,7 +473,7 @@ inline StepLimit updateCellsAndGeometry(const Mesh& mesh, const State& state, do
       "lagremap::cell_update::update_and_geometry", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
       KOKKOS_LAMBDA(const Index c, StepLimit& best) {
         updateCell(cell_nodes, x_n, s, dt_stage, c);
-        cellGeometryAndThermo(cell_nodes, x_n, s, controls, c, best);
+        cellGeometryAndThermo(cell_nodes, x_n, s, controls, c, best, true);
       },
       StepLimitReducer(limit));
   return limit;

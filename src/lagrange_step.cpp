@@ -64,6 +64,11 @@ void LagrangeStep::saveStartOfStep() {
   Kokkos::deep_copy(state_.v_c0, state_.v_c);
   Kokkos::deep_copy(state_.E_c0, state_.E_c);
   Kokkos::deep_copy(state_.e_ck0, state_.e_ck);
+  if (state_.n_materials > 1) {  // mixed cells share volume changes by compressibility
+    Kokkos::deep_copy(state_.alpha_ck0, state_.alpha_ck);
+    Kokkos::deep_copy(state_.w_ck0, state_.w_ck);
+    Kokkos::deep_copy(state_.vol_c0, state_.vol_c);
+  }
   if (state_.has_solids) {  // fluids-only runs have no deviator or B to carry
     Kokkos::deep_copy(state_.S_ck0, state_.S_ck);
     Kokkos::deep_copy(state_.B_ck0, state_.B_ck);
@@ -75,6 +80,7 @@ void LagrangeStep::restoreStartOfStep() {
   Kokkos::deep_copy(state_.v_c, state_.v_c0);
   Kokkos::deep_copy(state_.E_c, state_.E_c0);
   Kokkos::deep_copy(state_.e_ck, state_.e_ck0);
+  if (state_.n_materials > 1) Kokkos::deep_copy(state_.alpha_ck, state_.alpha_ck0);
   if (state_.has_solids) {
     Kokkos::deep_copy(state_.S_ck, state_.S_ck0);
     Kokkos::deep_copy(state_.B_ck, state_.B_ck0);

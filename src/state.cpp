@@ -56,6 +56,10 @@ void allocateMaterialState(State& s, Index n_cells, int n_materials, bool has_so
   s.e_ck = scalars("e_ck");
   s.e_ck0 = scalars("e_ck0");
   s.p_ck = scalars("p_ck");
+  s.w_ck = scalars("w_ck");
+  s.w_ck0 = scalars("w_ck0");
+  s.alpha_ck0 = scalars("alpha_ck0");
+  s.vol_c0 = RealView("lagremap::state::vol_c0", n_cells);
   s.S_ck = tensors("S_ck");
   s.S_ck0 = tensors("S_ck0");
   s.B_ck = tensors("B_ck");

@@ -26,12 +26,15 @@ struct State {
   // carried (mass, energy) but has no say in the cell's stress (its density
   // is the ratio of two tiny remapped numbers). 0 in lagrange mode.
   double alpha_trace = 0.0;
-  MatRealView alpha_ck;  // volume fraction, constant in the Lagrangian phase (equal strain)
+  MatRealView alpha_ck;  // volume fraction (README: shared volume changes in mixed cells)
   MatRealView m_ck;      // mass
   MatRealView e_ck;      // specific internal energy
   MatRealView p_ck;      // pressure (derived at every stage)
   MatSym6View S_ck;      // deviator: evolved (hypo-elastic) or from B (Neo-Hookean)
   MatSym6View B_ck;      // left Cauchy-Green tensor (Neo-Hookean; I elsewhere)
+  // Compressibility weight alpha^k / (rho^k a_k^2) (derived): a mixed cell's
+  // volume change is shared among its materials in proportion to it.
+  MatRealView w_ck;
 
   // Derived at every stage from the node positions (computeGeometry); the
   // mixture rules of DESIGN §3 give p = sum alpha^k p^k, S = sum alpha^k S^k,
@@ -44,7 +47,8 @@ struct State {
   // Start of step t^n: base of the predictor-corrector and the last good state.
   Vec3View x_n0, v_c0;
   RealView E_c0;
-  MatRealView e_ck0;
+  MatRealView e_ck0, alpha_ck0, w_ck0;
+  RealView vol_c0;
   MatSym6View S_ck0, B_ck0;
 
   // Corner arrays, corner id = 8 c + local node.
