@@ -341,13 +341,17 @@ def plot_taylor(run: Run, out_path: str) -> str:
     ax_bar.set_aspect("equal")
     ax_bar.set_xlabel(LABELS["x"])
     ax_bar.set_ylabel(LABELS["y"])
-    ax_bar.set_title("Deformed bar at t_end")
+    ax_bar.set_title("Deformed bar at t_end" if run.summary.get("mode") != "remap"
+                     else "Density on the fixed mesh at t_end (bar in gas)")
     history = run.table(length_name, ["t", "length"])
-    ax_len.plot(history["t"], history["length"], "-", color="tab:blue", label="lagrange")
+    mode = run.summary.get("mode", "lagrange")
+    remap = mode == "remap"
+    ax_len.plot(history["t"], history["length"], "--" if remap else "-", color="tab:blue",
+                label=mode + (" (aluminium volume along the axis)" if remap else ""))
     reference = run.check("final_length")
     if reference and isinstance(reference.get("reference"), (int, float)):
-        ax_len.axhline(reference["reference"], ls="--", color="black",
-                       label=f"paper (Lagrange) {reference['reference']:g} m")
+        ax_len.axhline(reference["reference"], ls=":", color="black",
+                       label=f"paper ({mode}) {reference['reference']:g} m")
     ax_len.set_xlabel(LABELS["t"])
     ax_len.set_ylabel("bar length [m]")
     ax_len.grid(alpha=0.3)

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # The README's run command: installs what is missing, builds (Release), runs
 # lagremap and draws the plots of its output directory.
-#   scripts/run.sh                       the default problem (sod) into out/sod
+#   scripts/run.sh                       the headline case: taylor in remap mode (the
+#                                        aluminium bar in gas) at half resolution,
+#                                        about half a minute on 2 cores, into out/taylor
 #   scripts/run.sh --problem sedov ...   any lagremap arguments
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -11,7 +13,7 @@ bash "$here/scripts/setup.sh"
 bash "$here/scripts/build.sh" --target lagremap
 
 args=("$@")
-[ ${#args[@]} -gt 0 ] || args=(--problem sod)
+[ ${#args[@]} -gt 0 ] || args=(--problem taylor --mode remap --scale 0.5)
 # Find the problem and output directory the run will use, to plot them.
 problem="" output=""
 for ((i = 0; i < ${#args[@]}; ++i)); do
