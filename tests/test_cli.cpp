@@ -126,6 +126,32 @@ TEST(CommandLine, SodRunWritesSummaryWithPassingChecks) {
   std::filesystem::remove_all(dir);
 }
 
+// A short multi-material remap run (the bar in gas on a coarse box) reports
+// its interfaces in summary.json and per-material fields in its snapshots.
+TEST(CommandLine, RemapRunReportsItsInterfaces) {
+  const std::string dir = testing::scratchDir("cli_remap");
+  const auto result = runLagremap(
+      "--problem taylor --mode remap --set mesh.nx=22 --set mesh.ny=8 --t-end 2e-4 --quiet "
+      "--output " +
+      dir);
+  // a 2e-4 s run cannot reach the final length: exit 1 (a check fails), not 2 or 3
+  ASSERT_EQ(result.exit_code, 1) << result.output;
+  std::ifstream summary(dir + "/summary.json");
+  std::stringstream text;
+  text << summary.rdbuf();
+  const std::string json = text.str();
+  for (const char* field : {"\"mode\": \"remap\"", "\"interfaces\"", "\"material_0\"",
+                            "\"mixed_cells_per_unit_area\"", "\"smeared_width\""}) {
+    EXPECT_NE(json.find(field), std::string::npos) << field;
+  }
+  // The alpha = 1/2 surface is the bar's outline off the wall (5 + 5 + 1 m) in
+  // a 0.025 m thick slab.
+  const std::size_t at = json.find("\"area\": ");
+  ASSERT_NE(at, std::string::npos);
+  EXPECT_NEAR(std::stod(json.substr(at + 8)), 11.0 * 0.025, 0.2 * 11.0 * 0.025);
+  std::filesystem::remove_all(dir);
+}
+
 // Snapshots at the requested times (hit exactly) plus the initial and final
 // states, listed in the series file ParaView opens.
 TEST(CommandLine, SnapshotsAtRequestedTimes) {
