@@ -59,23 +59,8 @@ class Bench {
     // The time loop of run.cpp (initial dt factor, growth limit), no outputs.
     const Kokkos::Timer wall;
     LagrangeStep lagrange(mesh, state_, numerics_, timers_);
-    StepLimit limit = lagrange.computeGeometry();
-    if (limit.val < 0.0) throw std::runtime_error(describeInvalidCell(limit, 0, "set-up"));
-    double dt_prev = 0.0;
-    for (long step = 0; step < warmup_steps; ++step) {
-      double dt = limit.val;
-      if (step == 0) {
-        dt *= numerics_.dt_initial_factor;
-      } else if (numerics_.dt_growth * dt_prev < dt) {
-        dt = numerics_.dt_growth * dt_prev;
-      }
-      limit = lagrange.advance(dt, step + 1);
-      if (limit.val < 0.0) {
-        throw std::runtime_error(describeInvalidCell(limit, step + 1, "warm-up"));
-      }
-      time_ += dt;
-      dt_prev = dt;
-    }
+    StepLimit limit;
+    time_ = bench::warmUp(lagrange, numerics_, warmup_steps, limit);
     warmup_seconds_ = wall.seconds();
     dt_stable_ = limit.val;
     Kokkos::deep_copy(x_n_warm_, mesh.x_n);

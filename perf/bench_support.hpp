@@ -6,6 +6,7 @@
 #include <Kokkos_Core.hpp>
 #include <cstdlib>
 #include <cstring>
+#include <stdexcept>
 
 #include "src/lagrange_step.hpp"
 
@@ -14,6 +15,31 @@ namespace lagremap::bench {
 // Whole steps run from the warm snapshot before it is put back (untimed), so
 // the timed steps never drift far from the developed state.
 constexpr long kStepsBetweenRestores = 50;
+
+// The time loop of run.cpp (initial dt factor, growth limit), no outputs, for
+// `steps` steps from the current state; returns the time advanced and leaves
+// the next step's dt candidate in `limit`.
+inline double warmUp(LagrangeStep& lagrange, const Numerics& numerics, long steps,
+                     StepLimit& limit) {
+  limit = lagrange.computeGeometry();
+  if (limit.val < 0.0) throw std::runtime_error(describeInvalidCell(limit, 0, "set-up"));
+  double time = 0.0, dt_prev = 0.0;
+  for (long step = 0; step < steps; ++step) {
+    double dt = limit.val;
+    if (step == 0) {
+      dt *= numerics.dt_initial_factor;
+    } else if (numerics.dt_growth * dt_prev < dt) {
+      dt = numerics.dt_growth * dt_prev;
+    }
+    limit = lagrange.advance(dt, step + 1);
+    if (limit.val < 0.0) {
+      throw std::runtime_error(describeInvalidCell(limit, step + 1, "warm-up"));
+    }
+    time += dt;
+    dt_prev = dt;
+  }
+  return time;
+}
 
 // One whole step per iteration as the driver takes it: advance(dt) at the
 // benchmark's fixed dt, whose last sweep also gives the next step's geometry
