@@ -169,6 +169,12 @@ void hostCellShapes(const HostMesh& mesh, std::vector<double>& volume,
   }
 }
 
+void refuseRemapMode(const Config& config, const std::string& problem, const std::string& what) {
+  if (!config.remapMode()) return;
+  throw ConfigError(problem + ": remap mode (" + what +
+                    ", PROBLEMS.md) is not set up yet; use --mode lagrange");
+}
+
 void fillMaterialRegions(ProblemSetup& setup, const MaterialRegions& regions,
                          int samples_per_edge) {
   const HostMesh mesh = copyToHost(setup.mesh);

@@ -18,11 +18,8 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 void declareShell(Config& config) {
-  if (config.remapMode()) {  // its free surfaces would sweep the shell out of the fixed mesh
-    throw ConfigError(
-        "shell: remap mode (the shell in gas on a 160 x 160 box, PROBLEMS.md) is not set up yet; "
-        "use --mode lagrange");
-  }
+  // Its free surfaces would sweep the shell out of the fixed mesh.
+  refuseRemapMode(config, "shell", "the shell in gas on a 160 x 160 box");
   config.addReal("t_end", 130e-6, "s", "final time");
   declareHypoSolidKeys(config, "be", "Be-hypo");
   config.addReal("shell.inner_radius", 0.08, "m", "inner radius Ri");

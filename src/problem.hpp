@@ -73,6 +73,9 @@ const std::vector<Problem>& problemRegistry();
 const Problem& findProblem(const std::string& name);
 
 // Helpers shared by the generators.
+// Throws ConfigError when the keys are declared for remap mode: the problem's
+// remap set-up (`what`, e.g. its gas-filled box) does not exist yet.
+void refuseRemapMode(const Config& config, const std::string& problem, const std::string& what);
 void declareMeshKeys(Config& config, int nx, int ny, int nz);
 void declareBoundaryKeys(Config& config, const std::array<const char*, kNumSides>& defaults);
 // <prefix>.rho0, a0, Gamma0, s, mu, yield_stress: a Mie-Gruneisen,
