@@ -183,12 +183,14 @@ inline StepLimit computeGeometry(const Mesh& mesh, const State& state,
                                  const TimeStepControls& controls) {
   const auto cell_nodes = mesh.cell_nodes;
   const auto x_n = mesh.x_n;
+  const auto owned = mesh.cell_owned;
   const auto s = state;
   StepLimit limit;
   Kokkos::parallel_reduce(
       "lagremap::geometry::cells", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
       KOKKOS_LAMBDA(const Index c, StepLimit& best) {
-        cellGeometryAndThermo(cell_nodes, x_n, s, controls, c, best);
+        StepLimit ghost{};  // a ghost cell's candidates are its owner's to propose
+        cellGeometryAndThermo(cell_nodes, x_n, s, controls, c, owned(c) ? best : ghost);
       },
       StepLimitReducer(limit));
   return limit;

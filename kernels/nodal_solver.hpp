@@ -107,7 +107,8 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
               dp = s.p_c(nb) - p_cell;
               // a fluid neighbour's S_c is zero
               if (solid) dsigma = loadSym(s.S_c, nb) + identitySym(-s.p_c(nb)) - sigma_cell;
-            } else if (side_kind(face_side(c, f)) == int(BoundaryKind::Wall)) {
+            } else if (face_side(c, f) >= 0 &&
+                       side_kind(face_side(c, f)) == int(BoundaryKind::Wall)) {
               detail::mirrorAcrossFace(x, f, centroid, v_cell, dx, dv, normal);
               if (solid) dsigma = mirrorJump(sigma_cell, normal);
             } else {
@@ -467,13 +468,15 @@ inline StepLimit updateCellsAndGeometry(const Mesh& mesh, const State& state, do
                                         const TimeStepControls& controls) {
   const auto cell_nodes = mesh.cell_nodes;
   const auto x_n = mesh.x_n;
+  const auto owned = mesh.cell_owned;
   const auto s = state;
   StepLimit limit;
   Kokkos::parallel_reduce(
       "lagremap::cell_update::update_and_geometry", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
       KOKKOS_LAMBDA(const Index c, StepLimit& best) {
         updateCell(cell_nodes, x_n, s, dt_stage, c);
-        cellGeometryAndThermo(cell_nodes, x_n, s, controls, c, best, true);
+        StepLimit ghost{};  // a ghost cell's candidates are its owner's to propose
+        cellGeometryAndThermo(cell_nodes, x_n, s, controls, c, owned(c) ? best : ghost, true);
       },
       StepLimitReducer(limit));
   return limit;

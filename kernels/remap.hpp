@@ -188,6 +188,7 @@ inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state,
                                      const MatRealView& q, const DeviceView<Real** [3]>& gradient,
                                      const SweptFaces& swept) {
   const auto neighbors = mesh.cell_neighbors;
+  const auto owned = mesh.cell_owned;
   const auto s = state;
   const double alpha_floor = controls.alpha_floor;
   const bool kinetic_energy_fix = controls.kinetic_energy_fix;
@@ -239,9 +240,11 @@ inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state,
                 mass += dvol * q(c, layout.mass(m));
                 energy += dvol * q(c, layout.energy(m));
               }
-              crossed.v[0] += mass;
-              for (int d = 0; d < 3; ++d) crossed.v[1 + d] += dvol * q(c, layout.momentum(d));
-              crossed.v[4] += energy;
+              if (owned(c)) {  // (a ghost's crossing is booked by its owner)
+                crossed.v[0] += mass;
+                for (int d = 0; d < 3; ++d) crossed.v[1 + d] += dvol * q(c, layout.momentum(d));
+                crossed.v[4] += energy;
+              }
               continue;
             }
             // Upwind cell: the one the region is taken from (c gains from nb

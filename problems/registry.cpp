@@ -96,16 +96,18 @@ namespace {
 template <class Value>
 double sideMean(const Mesh& mesh, int side, const char* label, Value value) {
   const auto face_side = mesh.cell_face_side;
+  const auto owned = mesh.cell_owned;
   SumArray<2> sums;
   Kokkos::parallel_reduce(
       label, Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
       KOKKOS_LAMBDA(const Index c, SumArray<2>& acc) {
-        if (face_side(c, side) == side) {
+        if (owned(c) && face_side(c, side) == side) {
           acc.v[0] += value(c);
           acc.v[1] += 1.0;
         }
       },
       Kokkos::Sum<SumArray<2>>(sums));
+  parallel::sum(sums.v, 2);
   return sums.v[1] > 0 ? sums.v[0] / sums.v[1] : 0.0;
 }
 }  // namespace

@@ -82,7 +82,7 @@ double innerRadius(const Mesh& mesh, const State&) {
         acc = r < acc ? r : acc;
       },
       Kokkos::Min<double>(radius));
-  return radius;
+  return parallel::min(radius);
 }
 
 std::vector<Check> finishShell(const Config& config, const FinalFields& fields,

@@ -101,6 +101,7 @@ double barLength(const Mesh& mesh, const State& state) {
     const auto cell_nodes = mesh.cell_nodes;
     const auto alpha = state.alpha_ck;
     const auto vol = state.vol_c;
+    const auto owned = mesh.cell_owned;
     Kokkos::parallel_reduce(
         "lagremap::diagnostics::bar_length_alpha", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
         KOKKOS_LAMBDA(const Index c, double& sum) {
@@ -113,18 +114,18 @@ double barLength(const Mesh& mesh, const State& state) {
             z_lo = z < z_lo ? z : z_lo;
             z_hi = z > z_hi ? z : z_hi;
           }
-          if (math::fabs(y_lo) <= 1e-9 * (y_hi - y_lo)) {
+          if (owned(c) && math::fabs(y_lo) <= 1e-9 * (y_hi - y_lo)) {
             sum += alpha(c, 0) * vol(c) / ((y_hi - y_lo) * (z_hi - z_lo));
           }
         },
         length);
-    return length;
+    return parallel::sum(length);
   }
   Kokkos::parallel_reduce(
       "lagremap::diagnostics::bar_length", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_nodes),
       KOKKOS_LAMBDA(const Index n, double& acc) { acc = x_n(n, 0) > acc ? x_n(n, 0) : acc; },
       Kokkos::Max<double>(length));
-  return length;
+  return parallel::max(length);
 }
 
 std::vector<Check> finishTaylor(const Config& config, const FinalFields& fields,

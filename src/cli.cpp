@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "parallel.hpp"
 #include "run.hpp"
 #include "timers.hpp"
 
@@ -22,7 +23,8 @@ std::string exactText(double value) {
 }
 
 int badInput(const std::string& message) {
-  std::fprintf(stderr, "lagremap: error: %s\n", message.c_str());
+  // Every rank finds the same bad input; one says so.
+  if (parallel::isRoot()) std::fprintf(stderr, "lagremap: error: %s\n", message.c_str());
   return kExitBadInput;
 }
 
@@ -142,6 +144,9 @@ int runCommandLine(int argc, char* argv[]) {
     options.quiet = quiet;
 
     const RunResult result = runProblem(options);
+    if (!parallel::isRoot()) {  // rank 0 reports; every rank returns the same code
+      return result.failed ? kExitRunFailed : result.checksPass() ? 0 : kExitChecksFailed;
+    }
     if (result.failed) {
       std::fprintf(stderr, "lagremap: run failed: %s; last good state (t = %.6g) written to %s\n",
                    result.failure.c_str(), result.time, options.output_dir.c_str());

@@ -2,6 +2,8 @@
 
 #include <utility>
 
+#include "parallel.hpp"
+
 namespace lagremap {
 
 std::string describeInvalidCell(const StepLimit& limit, long step, const char* when) {
@@ -27,12 +29,21 @@ std::string describeInvalidCell(const StepLimit& limit, long step, const char* w
          what;
 }
 
-LagrangeStep::LagrangeStep(Mesh& mesh, State& state, const Numerics& numerics, PhaseTimers& timers)
-    : mesh_(mesh), state_(state), numerics_(numerics), timers_(timers) {}
+LagrangeStep::LagrangeStep(Mesh& mesh, State& state, const Numerics& numerics, PhaseTimers& timers,
+                           const Halo* halo)
+    : mesh_(mesh), state_(state), numerics_(numerics), timers_(timers), halo_(halo) {}
+
+StepLimit LagrangeStep::overAllRanks(StepLimit limit) const {
+  const int cell = limit.loc / kLimitCodes;
+  if (limit.loc >= 0 && cell < mesh_.n_cells) {
+    limit.loc = int(mesh_.cell_global(cell)) * kLimitCodes + limit.loc % kLimitCodes;
+  }
+  return parallel::minLoc(limit);
+}
 
 StepLimit LagrangeStep::computeGeometry() {
   auto scope = timers_.scope(Phase::Geometry);
-  return lagremap::computeGeometry(mesh_, state_, numerics_.step);
+  return overAllRanks(lagremap::computeGeometry(mesh_, state_, numerics_.step));
 }
 
 StepLimit LagrangeStep::advance(double dt, long step) {
@@ -55,8 +66,21 @@ StepLimit LagrangeStep::stage(double dt_stage) {
     nodalSolve(mesh_, state_, corner_controls, dt_stage);
     std::swap(mesh_.x_n, state_.x_n_next);  // the mesh moves: no copy, the Views trade places
   }
-  auto scope = timers_.scope(Phase::CellUpdate);
-  return updateCellsAndGeometry(mesh_, state_, dt_stage, numerics_.step);
+  if (halo_) {  // ghost nodes: their owners' velocities and positions (DESIGN §6)
+    auto scope = timers_.scope(Phase::Halo);
+    halo_->exchangeNodes({fieldRef("x_n", mesh_.x_n), fieldRef("v_n", state_.v_n),
+                          fieldRef("f_ext_n", state_.f_ext_n)});
+  }
+  StepLimit limit;
+  {
+    auto scope = timers_.scope(Phase::CellUpdate);
+    limit = updateCellsAndGeometry(mesh_, state_, dt_stage, numerics_.step);
+  }
+  if (halo_) {
+    auto scope = timers_.scope(Phase::Halo);
+    halo_->exchangeCells(cellStateFields(state_));
+  }
+  return overAllRanks(limit);
 }
 
 void LagrangeStep::saveStartOfStep() {

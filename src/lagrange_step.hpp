@@ -10,6 +10,7 @@
 
 #include "../kernels/geometry.hpp"
 #include "../kernels/nodal_solver.hpp"
+#include "decomposition.hpp"
 #include "mesh.hpp"
 #include "state.hpp"
 #include "timers.hpp"
@@ -37,7 +38,9 @@ std::string describeInvalidCell(const StepLimit& limit, long step, const char* w
 
 class LagrangeStep {
  public:
-  LagrangeStep(Mesh& mesh, State& state, const Numerics& numerics, PhaseTimers& timers);
+  // `halo`: the ghost exchanges of a decomposed run (none: one rank).
+  LagrangeStep(Mesh& mesh, State& state, const Numerics& numerics, PhaseTimers& timers,
+               const Halo* halo = nullptr);
 
   // Geometry and thermodynamics of the current node positions; returns the
   // time-step candidate (negative for an invalid cell).
@@ -54,11 +57,14 @@ class LagrangeStep {
  private:
   // Corner terms, nodal solve, then cell update and geometry at the new positions.
   StepLimit stage(double dt_stage);
+  // The smallest candidate over every rank's owned cells, located by global cell id.
+  StepLimit overAllRanks(StepLimit limit) const;
 
   Mesh& mesh_;
   State& state_;
   Numerics numerics_;
   PhaseTimers& timers_;
+  const Halo* halo_;
 };
 
 }  // namespace lagremap

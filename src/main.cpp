@@ -3,9 +3,11 @@
 
 #include "cli.hpp"
 #include "floating_point.hpp"
+#include "parallel.hpp"
 
 int main(int argc, char* argv[]) {
   lagremap::flushDenormalsToZero();  // before Kokkos starts its threads, which inherit it
+  lagremap::parallel::Session mpi(argc, argv);  // one rank per socket or GPU (DESIGN §6)
   Kokkos::ScopeGuard kokkos(argc, argv);
   return lagremap::runCommandLine(argc, argv);
 }

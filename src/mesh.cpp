@@ -213,7 +213,23 @@ Mesh buildBlockMesh(const BlockSpec& spec, const SideBoundaries& boundaries) {
   for (int side = 0; side < kNumSides; ++side) kind_host(side) = int(boundaries[side].kind);
   mesh.side_kind = decltype(mesh.side_kind)("lagremap::mesh::side_kind");
   Kokkos::deep_copy(mesh.side_kind, kind_host);
+  ownEverything(mesh);
   return mesh;
+}
+
+void ownEverything(Mesh& mesh) {
+  mesh.cell_owned = DeviceView<int*>("lagremap::mesh::cell_owned", mesh.n_cells);
+  mesh.node_owned = DeviceView<int*>("lagremap::mesh::node_owned", mesh.n_nodes);
+  Kokkos::deep_copy(mesh.cell_owned, 1);
+  Kokkos::deep_copy(mesh.node_owned, 1);
+  mesh.cell_global = Kokkos::View<long*, HostSpace>("lagremap::mesh::cell_global", mesh.n_cells);
+  mesh.node_global = Kokkos::View<long*, HostSpace>("lagremap::mesh::node_global", mesh.n_nodes);
+  for (Index c = 0; c < mesh.n_cells; ++c) mesh.cell_global(c) = c;
+  for (Index n = 0; n < mesh.n_nodes; ++n) mesh.node_global(n) = n;
+  mesh.n_owned_cells = mesh.n_cells;
+  mesh.n_owned_nodes = mesh.n_nodes;
+  mesh.n_global_cells = mesh.n_cells;
+  mesh.n_global_nodes = mesh.n_nodes;
 }
 
 HostMesh copyToHost(const Mesh& mesh) {

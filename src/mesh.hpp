@@ -24,9 +24,22 @@ struct Mesh {
   Index n_nodes = 0, n_cells = 0;
   int nx = 0, ny = 0, nz = 0;  // block dimensions (cell id = i + nx (j + ny k))
 
-  Vec3View x_n;                  // node coordinates (moved by the Lagrangian phase)
-  CellNodesView cell_nodes;      // 8 nodes per cell, VTK_HEXAHEDRON order
-  CellFacesView cell_neighbors;  // neighbour across each face, -1 on the boundary
+  // Domain decomposition (DESIGN §6, src/decomposition.hpp). A rank holds the
+  // cells it owns and ghost cells round them, and their nodes, numbered in
+  // increasing global id: node sums, upwind ties and face owners then pick the
+  // same cells as on one rank, so results do not depend on the rank count.
+  // Reductions (time step, totals, probes) count owned entities only. One
+  // rank: everything owned, local id = global id.
+  DeviceView<int*> cell_owned, node_owned;                  // 1 if this rank owns it
+  Kokkos::View<long*, HostSpace> cell_global, node_global;  // global ids
+  Index n_owned_cells = 0, n_owned_nodes = 0;
+  long n_global_cells = 0, n_global_nodes = 0;
+
+  Vec3View x_n;              // node coordinates (moved by the Lagrangian phase)
+  CellNodesView cell_nodes;  // 8 nodes per cell, VTK_HEXAHEDRON order
+  // Neighbour across each face, -1 on the boundary (and, on a rank's outer
+  // ghost layer, across the cut, where cell_face_side is -1 too).
+  CellFacesView cell_neighbors;
   CellFacesView cell_face_side;  // box side of a boundary face, -1 for interior faces
   // The neighbour's local face that is face f of the cell, -1 on the boundary: both
   // sides of an interior face find the same swept triangles (remap, DESIGN §5).
@@ -45,8 +58,11 @@ struct Mesh {
   DeviceView<int[kNumSides]> side_kind;          // BoundaryKind of each side
 };
 
-// Builds the mesh of a block with the side boundary conditions.
+// Builds the mesh of a block with the side boundary conditions (all of it
+// owned by the calling rank).
 Mesh buildBlockMesh(const BlockSpec& spec, const SideBoundaries& boundaries);
+// Marks every cell and node of the mesh owned, with global id = local id.
+void ownEverything(Mesh& mesh);
 
 // Host copies of coordinates and connectivity, for output and checks.
 struct HostMesh {

@@ -8,6 +8,7 @@
 
 #include "config.hpp"
 #include "mesh.hpp"
+#include "parallel.hpp"
 #include "state.hpp"
 
 namespace lagremap {

@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "parallel.hpp"
+
 namespace lagremap {
 
 namespace {
@@ -26,8 +28,14 @@ RemapLayout makeLayout(const State& state) {
 
 }  // namespace
 
-RemapStep::RemapStep(Mesh& mesh, State& state, const RemapControls& controls, PhaseTimers& timers)
-    : mesh_(mesh), state_(state), controls_(controls), timers_(timers), layout_(makeLayout(state)) {
+RemapStep::RemapStep(Mesh& mesh, State& state, const RemapControls& controls, PhaseTimers& timers,
+                     const Halo* halo)
+    : mesh_(mesh),
+      state_(state),
+      controls_(controls),
+      timers_(timers),
+      halo_(halo),
+      layout_(makeLayout(state)) {
   const Index n_cells = mesh.n_cells;
   x_target_ = Vec3View("lagremap::remap::x_target", mesh.n_nodes);
   Kokkos::deep_copy(x_target_, mesh.x_n);
@@ -40,16 +48,23 @@ RemapStep::RemapStep(Mesh& mesh, State& state, const RemapControls& controls, Ph
 }
 
 RemapBoundaryFlux RemapStep::apply() {
-  auto scope = timers_.scope(Phase::Remap);
-  Kokkos::deep_copy(m_c_saved_, state_.m_c);
-  Kokkos::deep_copy(alpha_ck_saved_, state_.alpha_ck);
-  Kokkos::deep_copy(m_ck_saved_, state_.m_ck);
-  remapDensities(state_, layout_, density_);
-  remapGradients(mesh_, state_, layout_, controls_, density_, gradient_);
-  computeSweptFaces(mesh_, mesh_.x_n, x_target_, swept_);
-  const RemapBoundaryFlux crossed =
-      remapUpdate(mesh_, state_, layout_, controls_, density_, gradient_, swept_);
-  Kokkos::deep_copy(mesh_.x_n, x_target_);
+  RemapBoundaryFlux crossed;
+  {
+    auto scope = timers_.scope(Phase::Remap);
+    Kokkos::deep_copy(m_c_saved_, state_.m_c);
+    Kokkos::deep_copy(alpha_ck_saved_, state_.alpha_ck);
+    Kokkos::deep_copy(m_ck_saved_, state_.m_ck);
+    remapDensities(state_, layout_, density_);
+    remapGradients(mesh_, state_, layout_, controls_, density_, gradient_);
+    computeSweptFaces(mesh_, mesh_.x_n, x_target_, swept_);
+    crossed = remapUpdate(mesh_, state_, layout_, controls_, density_, gradient_, swept_);
+    Kokkos::deep_copy(mesh_.x_n, x_target_);
+  }
+  if (halo_) {  // ghost cells: their owners' remapped state (DESIGN §6)
+    auto scope = timers_.scope(Phase::Halo);
+    halo_->exchangeCells(cellStateFields(state_));
+  }
+  parallel::sum(crossed.v, 5);
   return crossed;
 }
 

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "../kernels/remap.hpp"
+#include "decomposition.hpp"
 #include "mesh.hpp"
 #include "state.hpp"
 #include "timers.hpp"
@@ -15,7 +16,8 @@ namespace lagremap {
 class RemapStep {
  public:
   // Keeps the mesh's current node positions as the remap target.
-  RemapStep(Mesh& mesh, State& state, const RemapControls& controls, PhaseTimers& timers);
+  RemapStep(Mesh& mesh, State& state, const RemapControls& controls, PhaseTimers& timers,
+            const Halo* halo = nullptr);
 
   // Remaps the state of the Lagrangian mesh onto the target mesh and moves the
   // mesh back; returns what crossed the outer boundary (mass, momentum,
@@ -33,6 +35,7 @@ class RemapStep {
   State& state_;
   RemapControls controls_;
   PhaseTimers& timers_;
+  const Halo* halo_;
   RemapLayout layout_;
   Vec3View x_target_;
   MatRealView density_;              // (cell, variable) per unit volume

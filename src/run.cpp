@@ -12,10 +12,12 @@
 
 #include <unistd.h>
 
+#include "decomposition.hpp"
 #include "diagnostics.hpp"
 #include "io/snapshot_writer.hpp"
 #include "json.hpp"
 #include "lagrange_step.hpp"
+#include "parallel.hpp"
 #include "remap_step.hpp"
 
 namespace lagremap {
@@ -57,24 +59,34 @@ Config declareConfig(const Problem& problem, const std::string& mode) {
 
 namespace {
 
-FinalFields copyFields(const ProblemSetup& setup, const State& state, double time) {
+// Host copies of the fields of the whole mesh: a decomposed run (`global`:
+// the generated mesh, for its connectivity) gathers every rank's owned rows.
+FinalFields copyFields(const Mesh& mesh, const Mesh* global, const State& state, double time) {
   FinalFields fields;
   fields.time = time;
-  fields.nx = setup.mesh.nx;
-  fields.ny = setup.mesh.ny;
-  fields.nz = setup.mesh.nz;
-  fields.mesh = copyToHost(setup.mesh);
-  fields.rho = Kokkos::create_mirror_view_and_copy(HostSpace(), state.rho_c);
-  fields.p = Kokkos::create_mirror_view_and_copy(HostSpace(), state.p_c);
-  fields.e = Kokkos::create_mirror_view_and_copy(HostSpace(), state.e_c);
-  fields.vol = Kokkos::create_mirror_view_and_copy(HostSpace(), state.vol_c);
-  fields.v = Kokkos::create_mirror_view_and_copy(HostSpace(), state.v_c);
-  fields.x_c = Kokkos::create_mirror_view_and_copy(HostSpace(), state.x_c);
-  fields.S = Kokkos::create_mirror_view_and_copy(HostSpace(), state.S_c);
-  fields.alpha = Kokkos::create_mirror_view_and_copy(HostSpace(), state.alpha_ck);
-  fields.m_k = Kokkos::create_mirror_view_and_copy(HostSpace(), state.m_ck);
-  fields.e_k = Kokkos::create_mirror_view_and_copy(HostSpace(), state.e_ck);
-  fields.p_k = Kokkos::create_mirror_view_and_copy(HostSpace(), state.p_ck);
+  fields.nx = mesh.nx;
+  fields.ny = mesh.ny;
+  fields.nz = mesh.nz;
+  auto cells = [&](const auto& view) {
+    auto host = Kokkos::create_mirror_view_and_copy(HostSpace(), view);
+    return global ? gatherGlobal(host, mesh, true) : host;
+  };
+  fields.mesh = copyToHost(mesh);
+  if (global) {
+    fields.mesh.x_n = gatherGlobal(fields.mesh.x_n, mesh, false);
+    fields.mesh.cell_nodes = Kokkos::create_mirror_view_and_copy(HostSpace(), global->cell_nodes);
+  }
+  fields.rho = cells(state.rho_c);
+  fields.p = cells(state.p_c);
+  fields.e = cells(state.e_c);
+  fields.vol = cells(state.vol_c);
+  fields.v = cells(state.v_c);
+  fields.x_c = cells(state.x_c);
+  fields.S = cells(state.S_c);
+  fields.alpha = cells(state.alpha_ck);
+  fields.m_k = cells(state.m_ck);
+  fields.e_k = cells(state.e_ck);
+  fields.p_k = cells(state.p_ck);
   return fields;
 }
 
@@ -326,12 +338,38 @@ RunResult runProblem(const RunOptions& options) {
   } catch (const std::invalid_argument& error) {  // e.g. an impossible mesh
     throw ConfigError(options.problem + ": " + error.what());
   }
+  // --- decomposition (DESIGN §6): this rank's block of cells and its ghosts
+  const bool decomposed = parallel::size() > 1;
+  Mesh global_mesh;  // the generated mesh of a decomposed run (output connectivity)
+  std::unique_ptr<Halo> halo;
+  if (decomposed) {
+    Subdomain sub;
+    try {
+      sub = decompose(setup.mesh);
+    } catch (const std::invalid_argument& error) {
+      throw ConfigError(options.problem + ": " + error.what());
+    }
+    setup.cells = localInitialCells(setup.cells, sub.mesh, int(setup.materials.size()));
+    global_mesh = std::move(setup.mesh);
+    setup.mesh = std::move(sub.mesh);
+    halo = std::make_unique<Halo>(std::move(sub.halo));
+  }
+  const Mesh* output_mesh = decomposed ? &global_mesh : nullptr;
   Mesh& mesh = setup.mesh;
   State state = allocateState(mesh, numerics.gather == Gather::Atomics);
-  initializeState(setup, state);
+  {
+    std::string error;  // found by one rank, reported by all
+    try {
+      initializeState(setup, state);
+    } catch (const ConfigError& bad) {
+      error = bad.what();
+    }
+    error = parallel::firstMessage(error);
+    if (!error.empty()) throw ConfigError(error);
+  }
 
   PhaseTimers timers;
-  LagrangeStep lagrange(mesh, state, numerics, timers);
+  LagrangeStep lagrange(mesh, state, numerics, timers, halo.get());
   StepLimit limit = lagrange.computeGeometry();
   if (limit.val < 0.0) {
     throw ConfigError("initial state is invalid: " + describeInvalidCell(limit, 0, "set-up"));
@@ -353,7 +391,7 @@ RunResult runProblem(const RunOptions& options) {
       throw ConfigError("remap.alpha_floor must be in [0, 0.5)");
     }
     try {
-      remap = std::make_unique<RemapStep>(mesh, state, controls, timers);
+      remap = std::make_unique<RemapStep>(mesh, state, controls, timers, halo.get());
     } catch (const std::invalid_argument& error) {
       throw ConfigError(options.problem + ": " + error.what());
     }
@@ -363,7 +401,8 @@ RunResult runProblem(const RunOptions& options) {
   const std::string& dir = options.output_dir;
   std::unique_ptr<io::SnapshotSeries> snapshots;
   std::ofstream history;
-  if (options.write_files) {
+  const bool writer = options.write_files && parallel::isRoot();  // rank 0 writes the files
+  if (writer) {
     std::error_code error;
     std::filesystem::create_directories(dir, error);
     if (error)
@@ -382,9 +421,10 @@ RunResult runProblem(const RunOptions& options) {
             << tot.kinetic << ',' << tot.internal << ',' << tot.total() << '\n';
   };
   auto snapshot = [&](double t) {
-    if (!snapshots) return;
+    if (!options.write_files) return;
     auto scope = timers.scope(Phase::Output);
-    writeSnapshot(*snapshots, copyFields(setup, state, t));
+    const FinalFields fields = copyFields(mesh, output_mesh, state, t);
+    if (snapshots) writeSnapshot(*snapshots, fields);
   };
 
   std::vector<std::pair<double, double>> probe;
@@ -399,7 +439,7 @@ RunResult runProblem(const RunOptions& options) {
 
   // --- time loop (DESIGN §3)
   RunResult result;
-  result.cells = mesh.n_cells;
+  result.cells = mesh.n_global_cells;
   Vec3 impulse{0, 0, 0};  // boundary impulse and work, for the conservation audit
   double work = 0.0;
   double mass_in = 0.0;  // what the remap brought in through a moving outer boundary
@@ -481,7 +521,7 @@ RunResult runProblem(const RunOptions& options) {
       auto scope = timers.scope(Phase::Diagnostics);
       probe.emplace_back(t, problem.probe(mesh, state));
     }
-    if (!options.quiet) {
+    if (!options.quiet && parallel::isRoot()) {
       const auto now = std::chrono::steady_clock::now();
       if (std::chrono::duration<double>(now - last_progress).count() > 3.0) {
         last_progress = now;
@@ -496,7 +536,8 @@ RunResult runProblem(const RunOptions& options) {
   result.failed = !result.failure.empty();
   result.steps = step;
   result.time = t;
-  result.cell_steps_per_second = step > 0 ? double(mesh.n_cells) * step / result.wall_seconds : 0;
+  result.cell_steps_per_second =
+      step > 0 ? double(mesh.n_global_cells) * step / result.wall_seconds : 0;
 
   // --- conservation audit: change of each total minus what the boundaries put in.
   // Scales: the largest energy the run held or received (a body at rest
@@ -508,21 +549,20 @@ RunResult runProblem(const RunOptions& options) {
   result.drift_momentum = norm(totals.momentum - initial.momentum - impulse) / momentum_scale;
   result.drift_energy = std::abs(totals.total() - initial.total() - work) / energy_scale;
 
-  result.fields = copyFields(setup, state, t);
+  result.fields = copyFields(mesh, output_mesh, state, t);
   result.fields.probe = std::move(probe);
-  if (problem.probe && options.write_files) {
+  if (problem.probe && writer) {
     std::ofstream probe_csv(dir + "/probe.csv");
     probe_csv << "t," << problem.probe_name << '\n' << std::setprecision(12);
     for (const auto& [time, value] : result.fields.probe) probe_csv << time << ',' << value << '\n';
   }
-  for (Index c = 0; c < mesh.n_cells; ++c) {
+  for (Index c = 0; c < Index(result.fields.v.extent(0)); ++c) {
     result.max_transverse_velocity =
         std::max({result.max_transverse_velocity, std::abs(result.fields.v(c, 1)),
                   std::abs(result.fields.v(c, 2))});
   }
-  if (!result.failed)
-    result.checks = problem.finish(config, result.fields, options.write_files ? dir : "");
-  if (!options.write_files) return result;
+  if (!result.failed) result.checks = problem.finish(config, result.fields, writer ? dir : "");
+  if (!writer) return result;
 
   {
     auto scope = timers.scope(Phase::Output);
@@ -538,8 +578,9 @@ RunResult runProblem(const RunOptions& options) {
       .value("gather", config.text("numerics.gather"))
       .value("threads", long(ExecSpace().concurrency()))
       .value("execution_space", ExecSpace::name())
-      .value("cells", long(mesh.n_cells))
-      .value("nodes", long(mesh.n_nodes))
+      .value("cells", mesh.n_global_cells)
+      .value("nodes", mesh.n_global_nodes)
+      .value("ranks", long(parallel::size()))
       .value("steps", step)
       .value("t_end", t_end)
       .value("t_final", t)
@@ -550,7 +591,8 @@ RunResult runProblem(const RunOptions& options) {
   json.beginObject("phases");
   for (int phase = 0; phase < int(Phase::Count); ++phase) {
     const double seconds = timers.seconds(Phase(phase));
-    json.value(phaseName(Phase(phase)), seconds > 0 ? double(mesh.n_cells) * step / seconds : 0.0);
+    json.value(phaseName(Phase(phase)),
+               seconds > 0 ? double(mesh.n_global_cells) * step / seconds : 0.0);
   }
   json.endObject().endObject();
   json.beginObject("phase_seconds");
@@ -573,7 +615,8 @@ RunResult runProblem(const RunOptions& options) {
   if (state.n_materials > 1) {
     json.beginObject("interfaces");
     for (int k = 0; k < state.n_materials; ++k) {
-      const InterfaceMeasure measure = measureInterface(mesh, result.fields, k);
+      const InterfaceMeasure measure =
+          measureInterface(decomposed ? global_mesh : mesh, result.fields, k);
       json.beginObject("material_" + std::to_string(k))
           .value("mixed_cells", measure.mixed_cells)
           .value("area", measure.area)

@@ -1,5 +1,7 @@
 #include "state.hpp"
 
+#include "fields.hpp"
+
 namespace lagremap {
 
 State allocateState(const Mesh& mesh, bool with_atomics_gather) {
@@ -64,6 +66,44 @@ void allocateMaterialState(State& s, Index n_cells, int n_materials, bool has_so
   s.S_ck0 = tensors("S_ck0");
   s.B_ck = tensors("B_ck");
   s.B_ck0 = tensors("B_ck0");
+}
+
+namespace {
+// Tensors exist only in runs with solids (extent 0 otherwise): nothing to move.
+template <class ViewType>
+void addIfAllocated(std::vector<FieldRef>& list, const std::string& name, const ViewType& view) {
+  if (view.extent(0) > 0 && view.size() > 0) list.push_back(fieldRef(name, view));
+}
+}  // namespace
+
+std::vector<FieldRef> evolvedCellFields(const State& s) {
+  std::vector<FieldRef> list;
+  addIfAllocated(list, "m_c", s.m_c);
+  addIfAllocated(list, "v_c", s.v_c);
+  addIfAllocated(list, "E_c", s.E_c);
+  addIfAllocated(list, "dvdt_c", s.dvdt_c);
+  addIfAllocated(list, "alpha_ck", s.alpha_ck);
+  addIfAllocated(list, "m_ck", s.m_ck);
+  addIfAllocated(list, "e_ck", s.e_ck);
+  addIfAllocated(list, "S_ck", s.S_ck);
+  addIfAllocated(list, "B_ck", s.B_ck);
+  return list;
+}
+
+std::vector<FieldRef> cellStateFields(const State& s) {
+  std::vector<FieldRef> list = evolvedCellFields(s);
+  addIfAllocated(list, "p_ck", s.p_ck);
+  addIfAllocated(list, "w_ck", s.w_ck);
+  addIfAllocated(list, "vol_c", s.vol_c);
+  addIfAllocated(list, "rho_c", s.rho_c);
+  addIfAllocated(list, "e_c", s.e_c);
+  addIfAllocated(list, "p_c", s.p_c);
+  addIfAllocated(list, "aL_c", s.aL_c);
+  addIfAllocated(list, "aT_c", s.aT_c);
+  addIfAllocated(list, "len_c", s.len_c);
+  addIfAllocated(list, "S_c", s.S_c);
+  addIfAllocated(list, "x_c", s.x_c);
+  return list;
 }
 
 }  // namespace lagremap

@@ -17,14 +17,15 @@ enum class Phase : int {
   NodalSolve,
   CellUpdate,
   Remap,
+  Halo,
   Diagnostics,
   Output,
   Count
 };
 
 inline const char* phaseName(Phase phase) {
-  static const char* names[] = {"geometry", "corners",     "nodal_solve", "cell_update",
-                                "remap",    "diagnostics", "output"};
+  static const char* names[] = {"geometry", "corners", "nodal_solve", "cell_update",
+                                "remap",    "halo",    "diagnostics", "output"};
   return names[int(phase)];
 }
 

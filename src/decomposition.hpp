@@ -1,0 +1,108 @@
+// MPI domain decomposition (DESIGN §6): block partition of a generated mesh
+// over the ranks, ghost cells and nodes, and the halo exchange.
+//
+// Every rank generates the whole mesh (the generators stay serial and
+// unchanged), keeps its block of cells plus kGhostLayers layers round it and
+// their nodes, and numbers them in increasing global id. Two layers suffice
+// for one stage: a node of an owned cell gathers the corners of layer-1
+// cells, whose limited reconstruction reads their face neighbours (layer 2);
+// the remap's upwind cells are face neighbours too. After each nodal solve
+// the ghost nodes, and after each cell update or remap the ghost cells,
+// receive their owners' values, so every stage starts with all of them exact.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "fields.hpp"
+#include "mesh.hpp"
+
+namespace lagremap {
+
+struct InitialCells;
+
+constexpr int kGhostLayers = 2;
+
+// Ranks along x, y, z: the factorisation of n_ranks that cuts the fewest
+// faces of an nx x ny x nz block (no direction gets more ranks than cells).
+std::array<int, 3> chooseProcessGrid(int nx, int ny, int nz, int n_ranks);
+
+// Cell box [lo, hi) of `rank` on the process grid (balanced split of each direction).
+struct CellBox {
+  std::array<int, 3> lo, hi;
+};
+CellBox ownedBox(int nx, int ny, int nz, const std::array<int, 3>& grid, int rank);
+
+class Halo {
+ public:
+  Halo() = default;  // one rank: nothing to exchange
+
+  // Ghost cells (resp. nodes) get their owners' values of `fields`.
+  void exchangeCells(const std::vector<FieldRef>& fields) const;
+  void exchangeNodes(const std::vector<FieldRef>& fields) const;
+
+  struct Link {
+    int rank = 0;
+    IndexView send, recv;  // local ids, in the order both sides agree on (global id)
+  };
+  std::vector<Link> cell_links, node_links;
+
+ private:
+  void exchange(const std::vector<Link>& links, const std::vector<FieldRef>& fields) const;
+  mutable RealView send_buffer_, recv_buffer_;
+};
+
+// This rank's part of a globally generated mesh and the halo linking it to
+// the other ranks (collective: every rank calls it with the same mesh).
+struct Subdomain {
+  Mesh mesh;
+  Halo halo;
+  std::array<int, 3> grid{1, 1, 1};
+};
+Subdomain decompose(const Mesh& global);
+// The initial cells of the subdomain's cells, from the global ones.
+InitialCells localInitialCells(const InitialCells& global, const Mesh& local, int n_materials);
+
+// Every rank's owned rows (global id, `components` doubles each) on every rank.
+void allgatherRows(const std::vector<long>& ids, const std::vector<double>& rows, int components,
+                   std::vector<long>& all_ids, std::vector<double>& all_rows);
+
+// A host copy of a per-cell (cells = true) or per-node field of a decomposed
+// run, indexed by global id: every rank's owned rows, on every rank.
+template <class HostViewT>
+HostViewT gatherGlobal(const HostViewT& local, const Mesh& mesh, bool cells) {
+  constexpr int rank = int(HostViewT::rank);
+  const int n1 = rank >= 2 ? int(local.extent(1)) : 1;
+  const int n2 = rank >= 3 ? int(local.extent(2)) : 1;
+  const int components = n1 * n2;
+  const auto owned =
+      Kokkos::create_mirror_view_and_copy(HostSpace(), cells ? mesh.cell_owned : mesh.node_owned);
+  const auto& global_id = cells ? mesh.cell_global : mesh.node_global;
+  const long n_global = cells ? mesh.n_global_cells : mesh.n_global_nodes;
+  const detail::RowAccess<HostViewT> element{local, n2};
+  std::vector<long> ids, all_ids;
+  std::vector<double> rows, all_rows;
+  if (local.extent(0) > 0) {
+    for (std::size_t e = 0; e < owned.extent(0); ++e) {
+      if (!owned(e)) continue;
+      ids.push_back(global_id(e));
+      for (int j = 0; j < components; ++j) rows.push_back(element(Index(e), j));
+    }
+  }
+  allgatherRows(ids, rows, components, all_ids, all_rows);
+  const std::size_t n_rows = local.extent(0) > 0 ? std::size_t(n_global) : 0;
+  HostViewT global;
+  if constexpr (HostViewT::rank_dynamic == 1) {
+    global = HostViewT(local.label(), n_rows);
+  } else {
+    static_assert(HostViewT::rank_dynamic == 2,
+                  "gatherGlobal: (entity) or (entity, material) Views");
+    global = HostViewT(local.label(), n_rows, local.extent(1));
+  }
+  const detail::RowAccess<HostViewT> out{global, n2};
+  for (std::size_t i = 0; i < all_ids.size(); ++i)
+    for (int j = 0; j < components; ++j) out(Index(all_ids[i]), j) = all_rows[i * components + j];
+  return global;
+}
+
+}  // namespace lagremap

@@ -1,0 +1,47 @@
+// The run's ranks (DESIGN §6): MPI_COMM_WORLD when MPI is initialised (the
+// lagremap executable and the MPI tests), a single rank otherwise (unit tests
+// that build a mesh directly). Collective reductions of the time loop: dt and
+// its location, totals, probes; every rank returns the same value.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "../kernels/time_step.hpp"
+
+namespace lagremap::parallel {
+
+int rank();
+int size();
+inline bool isRoot() {
+  return rank() == 0;
+}
+
+// In-place sums over the ranks of n doubles (totals, boundary work, probes).
+void sum(double* values, int n);
+double sum(double value);
+double min(double value);
+double max(double value);
+// Smallest time-step candidate over the ranks; ties go to the lowest location.
+// `loc` must already be global (cell global id * kLimitCodes + code).
+StepLimit minLoc(StepLimit limit);
+// Logical or of a per-rank condition (e.g. "this rank failed to read its part").
+bool any(bool condition);
+// Rank 0's string on every rank.
+std::string broadcast(const std::string& text);
+// The message of the lowest rank whose `message` is not empty, on every rank
+// ("" if none): an error found by one rank becomes every rank's error.
+std::string firstMessage(const std::string& message);
+void barrier();
+
+// MPI_Init for the executable (threads: funneled; Kokkos threads never call MPI)
+// and MPI_Finalize at scope exit.
+class Session {
+ public:
+  Session(int& argc, char**& argv);
+  ~Session();
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
+};
+
+}  // namespace lagremap::parallel
