@@ -90,48 +90,73 @@ FinalFields copyFields(const Mesh& mesh, const Mesh* global, const State& state,
   return fields;
 }
 
-void writeSnapshot(io::SnapshotSeries& series, const FinalFields& fields) {
-  const Index n_cells = Index(fields.rho.extent(0));
-  const Index n_nodes = Index(fields.mesh.x_n.extent(0));
-  std::vector<double> xyz(3 * std::size_t(n_nodes)), velocity(3 * std::size_t(n_cells));
-  std::vector<double> deviator(6 * std::size_t(n_cells));
-  std::vector<std::int64_t> connectivity(8 * std::size_t(n_cells));
-  for (Index n = 0; n < n_nodes; ++n)
-    for (int d = 0; d < 3; ++d) xyz[3 * n + d] = fields.mesh.x_n(n, d);
-  for (Index c = 0; c < n_cells; ++c) {
-    for (int p = 0; p < 8; ++p) connectivity[8 * std::size_t(c) + p] = fields.mesh.cell_nodes(c, p);
-    for (int d = 0; d < 3; ++d) velocity[3 * c + d] = fields.v(c, d);
-    for (int k = 0; k < 6; ++k) deviator[6 * std::size_t(c) + k] = fields.S(c, k);
+// Writes a snapshot of this rank's owned cells and nodes, numbered globally
+// (all of them on one rank); `fields` are the rank's host copies (copyFields
+// without gathering). Collective over the ranks.
+void writeSnapshot(io::SnapshotSeries& series, const FinalFields& fields, const Mesh& mesh) {
+  const auto cell_owned = Kokkos::create_mirror_view_and_copy(HostSpace(), mesh.cell_owned);
+  const auto node_owned = Kokkos::create_mirror_view_and_copy(HostSpace(), mesh.node_owned);
+  std::vector<Index> cells, nodes;  // local ids of the owned rows
+  std::vector<std::int64_t> cell_rows, node_rows;
+  for (Index c = 0; c < mesh.n_cells; ++c) {
+    if (!cell_owned(c)) continue;
+    cells.push_back(c);
+    cell_rows.push_back(mesh.cell_global(c));
   }
-  const io::SnapshotMesh mesh{n_nodes, xyz.data(), n_cells, connectivity.data()};
+  for (Index n = 0; n < mesh.n_nodes; ++n) {
+    if (!node_owned(n)) continue;
+    nodes.push_back(n);
+    node_rows.push_back(mesh.node_global(n));
+  }
+  const std::size_t n_cells = cells.size(), n_nodes = nodes.size();
+  std::vector<double> xyz(3 * n_nodes), velocity(3 * n_cells), deviator(6 * n_cells);
+  std::vector<std::int64_t> connectivity(8 * n_cells);
+  for (std::size_t i = 0; i < n_nodes; ++i)
+    for (int d = 0; d < 3; ++d) xyz[3 * i + d] = fields.mesh.x_n(nodes[i], d);
+  // One scalar per owned cell.
+  auto scalars = [&](auto value) {
+    std::vector<double> column(n_cells);
+    for (std::size_t i = 0; i < n_cells; ++i) column[i] = value(cells[i]);
+    return column;
+  };
+  for (std::size_t i = 0; i < n_cells; ++i) {
+    const Index c = cells[i];
+    for (int p = 0; p < 8; ++p)
+      connectivity[8 * i + p] = mesh.node_global(fields.mesh.cell_nodes(c, p));
+    for (int d = 0; d < 3; ++d) velocity[3 * i + d] = fields.v(c, d);
+    for (int k = 0; k < 6; ++k) deviator[6 * i + k] = fields.S(c, k);
+  }
+  std::vector<std::vector<double>> columns = {scalars([&](Index c) { return fields.rho(c); }),
+                                              scalars([&](Index c) { return fields.p(c); }),
+                                              scalars([&](Index c) { return fields.e(c); }),
+                                              scalars([&](Index c) { return fields.vol(c); })};
   std::vector<io::CellField> cell_fields = {
-      {"density", fields.rho.data(), 1},       {"pressure", fields.p.data(), 1},
-      {"internal_energy", fields.e.data(), 1}, {"volume", fields.vol.data(), 1},
-      {"velocity", velocity.data(), 3},        {"deviatoric_stress", deviator.data(), 6}};
+      {"density", columns[0].data(), 1},         {"pressure", columns[1].data(), 1},
+      {"internal_energy", columns[2].data(), 1}, {"volume", columns[3].data(), 1},
+      {"velocity", velocity.data(), 3},          {"deviatoric_stress", deviator.data(), 6}};
   // Multi-material problems: each material's volume fraction, density
   // m^k / (alpha^k v), specific internal energy and pressure (0 where absent).
   const int n_materials = int(fields.alpha.extent(1));
-  std::vector<std::vector<double>> material_fields;
-  if (n_materials > 1) {
-    material_fields.assign(4 * std::size_t(n_materials), std::vector<double>(std::size_t(n_cells)));
-    for (int k = 0; k < n_materials; ++k) {
-      std::vector<double>* field = &material_fields[4 * std::size_t(k)];
-      for (Index c = 0; c < n_cells; ++c) {
-        const double alpha = fields.alpha(c, k);
-        const bool present = alpha > 0.0;
-        field[0][c] = alpha;
-        field[1][c] = present ? fields.m_k(c, k) / (alpha * fields.vol(c)) : 0.0;
-        field[2][c] = present ? fields.e_k(c, k) : 0.0;
-        field[3][c] = present ? fields.p_k(c, k) : 0.0;
-      }
-      const std::string suffix = "_" + std::to_string(k);
-      cell_fields.push_back({"volume_fraction" + suffix, field[0].data(), 1});
-      cell_fields.push_back({"material_density" + suffix, field[1].data(), 1});
-      cell_fields.push_back({"material_internal_energy" + suffix, field[2].data(), 1});
-      cell_fields.push_back({"material_pressure" + suffix, field[3].data(), 1});
-    }
+  columns.reserve(columns.size() + 4 * std::size_t(n_materials));
+  for (int k = 0; n_materials > 1 && k < n_materials; ++k) {
+    auto present = [&](Index c) { return fields.alpha(c, k) > 0.0; };
+    columns.push_back(scalars([&](Index c) { return fields.alpha(c, k); }));
+    columns.push_back(scalars([&](Index c) {
+      return present(c) ? fields.m_k(c, k) / (fields.alpha(c, k) * fields.vol(c)) : 0.0;
+    }));
+    columns.push_back(scalars([&](Index c) { return present(c) ? fields.e_k(c, k) : 0.0; }));
+    columns.push_back(scalars([&](Index c) { return present(c) ? fields.p_k(c, k) : 0.0; }));
+    const std::string suffix = "_" + std::to_string(k);
+    const std::size_t first = columns.size() - 4;
+    cell_fields.push_back({"volume_fraction" + suffix, columns[first].data(), 1});
+    cell_fields.push_back({"material_density" + suffix, columns[first + 1].data(), 1});
+    cell_fields.push_back({"material_internal_energy" + suffix, columns[first + 2].data(), 1});
+    cell_fields.push_back({"material_pressure" + suffix, columns[first + 3].data(), 1});
   }
-  series.write(fields.time, mesh, cell_fields);
+  const io::SnapshotMesh snapshot_mesh{
+      std::int64_t(n_nodes), xyz.data(),       std::int64_t(n_cells), connectivity.data(),
+      node_rows.data(),      cell_rows.data(), mesh.n_global_nodes,   mesh.n_global_cells};
+  series.write(fields.time, snapshot_mesh, cell_fields);
 }
 
 // A mesh that cannot fit in memory is bad input, said before anything is
@@ -402,18 +427,23 @@ RunResult runProblem(const RunOptions& options) {
   std::unique_ptr<io::SnapshotSeries> snapshots;
   std::ofstream history;
   const bool writer = options.write_files && parallel::isRoot();  // rank 0 writes the files
+  std::string output_error;  // rank 0's, reported by every rank
   if (writer) {
     std::error_code error;
     std::filesystem::create_directories(dir, error);
-    if (error)
-      throw ConfigError("cannot create output directory '" + dir + "': " + error.message());
-    history.open(dir + "/history.csv");
-    if (!history) throw ConfigError("cannot write '" + dir + "/history.csv'");
+    if (error) {
+      output_error = "cannot create output directory '" + dir + "': " + error.message();
+    } else {
+      history.open(dir + "/history.csv");
+      if (!history) output_error = "cannot write '" + dir + "/history.csv'";
+    }
     history << "step,t,dt,dt_reason,mass,momentum_x,momentum_y,momentum_z,kinetic_energy,"
                "internal_energy,total_energy\n"
             << std::setprecision(15);
-    snapshots = std::make_unique<io::SnapshotSeries>(dir, "fields");
   }
+  output_error = parallel::firstMessage(output_error);
+  if (!output_error.empty()) throw ConfigError(output_error);
+  if (options.write_files) snapshots = std::make_unique<io::SnapshotSeries>(dir, "fields");
   auto writeHistory = [&](long step, double t, double dt, const char* reason, const Totals& tot) {
     if (!history.is_open()) return;
     history << step << ',' << t << ',' << dt << ',' << reason << ',' << tot.mass << ','
@@ -421,10 +451,9 @@ RunResult runProblem(const RunOptions& options) {
             << tot.kinetic << ',' << tot.internal << ',' << tot.total() << '\n';
   };
   auto snapshot = [&](double t) {
-    if (!options.write_files) return;
+    if (!snapshots) return;
     auto scope = timers.scope(Phase::Output);
-    const FinalFields fields = copyFields(mesh, output_mesh, state, t);
-    if (snapshots) writeSnapshot(*snapshots, fields);
+    writeSnapshot(*snapshots, copyFields(mesh, nullptr, state, t), mesh);
   };
 
   std::vector<std::pair<double, double>> probe;
@@ -562,12 +591,12 @@ RunResult runProblem(const RunOptions& options) {
                   std::abs(result.fields.v(c, 2))});
   }
   if (!result.failed) result.checks = problem.finish(config, result.fields, writer ? dir : "");
-  if (!writer) return result;
-
-  {
+  if (snapshots) {
     auto scope = timers.scope(Phase::Output);
-    writeSnapshot(*snapshots, result.fields);
+    writeSnapshot(*snapshots, decomposed ? copyFields(mesh, nullptr, state, t) : result.fields,
+                  mesh);
   }
+  if (!writer) return result;
   // --- summary.json
   std::ofstream out(dir + "/summary.json");
   JsonWriter json(out);

@@ -12,6 +12,9 @@
 #include <system_error>
 #include <utility>
 
+#include "../parallel.hpp"
+#include "hdf5_rows.hpp"
+
 namespace lagremap::io {
 
 namespace fs = std::filesystem;
@@ -20,155 +23,38 @@ namespace {
 
 constexpr int kNodesPerHex = 8;
 
-// ---------------------------------------------------------------------------------------
-// HDF5 helpers
-// ---------------------------------------------------------------------------------------
-
-// Disables HDF5's automatic error-stack printing for the lifetime of the object and
-// restores the previous handler afterwards (we report errors through exceptions).
-class QuietHdf5Errors {
- public:
-  QuietHdf5Errors() {
-    H5Eget_auto2(H5E_DEFAULT, &func_, &client_data_);
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  }
-  ~QuietHdf5Errors() { H5Eset_auto2(H5E_DEFAULT, func_, client_data_); }
-  QuietHdf5Errors(const QuietHdf5Errors&) = delete;
-  QuietHdf5Errors& operator=(const QuietHdf5Errors&) = delete;
-
- private:
-  H5E_auto2_t func_ = nullptr;
-  void* client_data_ = nullptr;
-};
-
-// Description of the innermost entry of the current HDF5 error stack, newlines removed.
-std::string hdf5_error_detail() {
-  std::string detail;
-  auto walker = [](unsigned n, const H5E_error2_t* err, void* out) -> herr_t {
-    if (n == 0 && err != nullptr && err->desc != nullptr)
-      *static_cast<std::string*>(out) = err->desc;
-    return 0;
-  };
-  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, walker, &detail);
-  H5Eclear2(H5E_DEFAULT);
-  for (char& c : detail)
-    if (c == '\n' || c == '\r') c = ' ';
-  return detail;
+std::int64_t globalNodes(const SnapshotMesh& mesh) {
+  return mesh.n_global_nodes >= 0 ? mesh.n_global_nodes : mesh.n_nodes;
+}
+std::int64_t globalCells(const SnapshotMesh& mesh) {
+  return mesh.n_global_cells >= 0 ? mesh.n_global_cells : mesh.n_cells;
 }
 
-[[noreturn]] void fail_hdf5(const std::string& what, const std::string& file) {
-  std::string msg = "lagremap::io: HDF5 failure (" + what + ") writing '" + file + "'";
-  const std::string detail = hdf5_error_detail();
-  if (!detail.empty()) msg += ": " + detail;
-  throw std::runtime_error(msg);
-}
-
-// Returns v, or throws if it is a negative HDF5 id / status.
-template <class T>
-T check(T v, const char* what, const std::string& file) {
-  if (v < 0) fail_hdf5(what, file);
-  return v;
-}
-
-// Owning hid_t with its matching close function.
-class Handle {
- public:
-  using Closer = herr_t (*)(hid_t);
-  Handle(hid_t id, Closer closer) : id_(id), closer_(closer) {}
-  ~Handle() {
-    if (id_ >= 0) closer_(id_);
-  }
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  hid_t get() const { return id_; }
-  // Closes now and reports failure (needed for files: H5Fclose flushes).
-  herr_t close() {
-    const herr_t status = id_ >= 0 ? closer_(id_) : 0;
-    id_ = -1;
-    return status;
-  }
-
- private:
-  hid_t id_;
-  Closer closer_;
-};
-
-// Writes the row slab [row_offset, row_offset + local_rows) of a dataset of global shape
-// [global_rows] (cols == 0) or [global_rows, cols] from `data` (local_rows * max(cols, 1)
-// values of mem_type). Serial callers pass row_offset = 0 and local_rows = global_rows;
-// the hyperslab selection is exactly what a collective MPI-IO write needs.
-void write_rows(hid_t loc, const std::string& name, hid_t file_type, hid_t mem_type,
-                std::int64_t global_rows, std::int64_t row_offset, std::int64_t local_rows,
-                int cols, const void* data, hid_t dxpl, const std::string& file) {
-  const int rank = cols == 0 ? 1 : 2;
-  const hsize_t gdims[2] = {static_cast<hsize_t>(global_rows), static_cast<hsize_t>(cols)};
-  const hsize_t start[2] = {static_cast<hsize_t>(row_offset), 0};
-  const hsize_t count[2] = {static_cast<hsize_t>(local_rows), static_cast<hsize_t>(cols)};
-
-  Handle file_space(check(H5Screate_simple(rank, gdims, nullptr), "H5Screate_simple", file),
-                    H5Sclose);
-  Handle dset(check(H5Dcreate2(loc, name.c_str(), file_type, file_space.get(), H5P_DEFAULT,
-                               H5P_DEFAULT, H5P_DEFAULT),
-                    ("create dataset " + name).c_str(), file),
-              H5Dclose);
-  // Serial: nothing to write for an empty slab. In a collective write every rank must still
-  // call H5Dwrite, with H5Sselect_none() on both the file and the memory space.
-  if (local_rows == 0) return;
-  check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start, nullptr, count, nullptr),
-        "H5Sselect_hyperslab", file);
-  Handle mem_space(check(H5Screate_simple(rank, count, nullptr), "H5Screate_simple", file),
-                   H5Sclose);
-  check(H5Dwrite(dset.get(), mem_type, mem_space.get(), file_space.get(), dxpl, data),
-        ("write dataset " + name).c_str(), file);
-}
-
-void write_scalar_attribute(hid_t loc, const char* name, double value, const std::string& file) {
-  Handle space(check(H5Screate(H5S_SCALAR), "H5Screate", file), H5Sclose);
-  Handle attr(check(H5Acreate2(loc, name, H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT),
-                    "create attribute", file),
-              H5Aclose);
-  check(H5Awrite(attr.get(), H5T_NATIVE_DOUBLE, &value), "write attribute", file);
-}
-
-// Writes one complete snapshot file.
-//
-// How to make this parallel (collective MPI-IO), when lagremap gets MPI domains:
-//  * fapl: H5Pset_fapl_mpio(fapl, comm, MPI_INFO_NULL) instead of the default driver
-//    (requires the parallel HDF5 build, H5_HAVE_PARALLEL, which Debian's
-//    libhdf5-openmpi-dev is); optionally H5Pset_all_coll_metadata_ops /
-//    H5Pset_coll_metadata_write.
-//  * dxpl: H5Pset_dxpl_mpio(dxpl, H5FD_MPIO_COLLECTIVE).
-//  * Sizes: each rank owns n_local cells and n_local owned nodes; global sizes from
-//    MPI_Allreduce, each rank's row offset from MPI_Exscan. Pass them to write_rows()
-//    (global_rows, row_offset, local_rows) instead of (n, 0, n). Connectivity must hold
-//    global node numbers (local index + owner's node offset; ghost nodes mapped to their
-//    owner's global number). All ranks create every dataset/attribute (metadata calls are
-//    collective); the attribute value must be identical on all ranks.
-//  * Only rank 0 writes the .xmf files (they need only the global sizes).
+// Writes one complete snapshot file; collective over the ranks (each writes
+// its own rows of every dataset, rank-count independent file contents).
 void write_snapshot_h5(const std::string& path, double time, const SnapshotMesh& mesh,
                        const std::vector<CellField>& fields) {
-  Handle fapl(check(H5Pcreate(H5P_FILE_ACCESS), "H5Pcreate(FILE_ACCESS)", path), H5Pclose);
-  Handle dxpl(check(H5Pcreate(H5P_DATASET_XFER), "H5Pcreate(DATASET_XFER)", path), H5Pclose);
-
+  Handle fapl(fileAccess(path), H5Pclose);
+  Handle dxpl(transfer(path), H5Pclose);
   const hid_t fid = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get());
   if (fid < 0) {
     std::string msg = "lagremap::io: cannot create HDF5 file '" + path + "'";
-    const std::string detail = hdf5_error_detail();
+    const std::string detail = hdf5ErrorDetail();
     if (!detail.empty()) msg += ": " + detail;
     throw std::runtime_error(msg);
   }
   Handle file(fid, H5Fclose);
-
-  write_scalar_attribute(file.get(), "time", time, path);
-
+  writeScalarAttribute(file.get(), "time", time, path);
+  const RowSelection nodes{globalNodes(mesh), mesh.n_nodes, mesh.node_rows};
+  const RowSelection cells{globalCells(mesh), mesh.n_cells, mesh.cell_rows};
   {
     Handle mesh_group(check(H5Gcreate2(file.get(), "mesh", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
                             "create group /mesh", path),
                       H5Gclose);
-    write_rows(mesh_group.get(), "coordinates", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, mesh.n_nodes, 0,
-               mesh.n_nodes, 3, mesh.node_xyz, dxpl.get(), path);
-    write_rows(mesh_group.get(), "connectivity", H5T_STD_I64LE, H5T_NATIVE_INT64, mesh.n_cells, 0,
-               mesh.n_cells, kNodesPerHex, mesh.cell_nodes, dxpl.get(), path);
+    writeRows(mesh_group.get(), "coordinates", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, nodes, 3,
+              mesh.node_xyz, dxpl.get(), path);
+    writeRows(mesh_group.get(), "connectivity", H5T_STD_I64LE, H5T_NATIVE_INT64, cells,
+              kNodesPerHex, mesh.cell_nodes, dxpl.get(), path);
   }
   {
     Handle field_group(
@@ -176,12 +62,11 @@ void write_snapshot_h5(const std::string& path, double time, const SnapshotMesh&
               "create group /fields", path),
         H5Gclose);
     for (const CellField& f : fields) {
-      write_rows(field_group.get(), f.name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, mesh.n_cells, 0,
-                 mesh.n_cells, f.components == 1 ? 0 : f.components, f.data, dxpl.get(), path);
+      writeRows(field_group.get(), f.name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, cells,
+                f.components == 1 ? 0 : f.components, f.data, dxpl.get(), path);
     }
   }
-
-  if (file.close() < 0) fail_hdf5("H5Fclose", path);
+  if (file.close() < 0) failHdf5("H5Fclose", path);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -325,9 +210,9 @@ void validate(double time, const SnapshotMesh& mesh, const std::vector<CellField
   const std::int64_t n_conn = mesh.n_cells * kNodesPerHex;
   for (std::int64_t i = 0; i < n_conn; ++i) {
     const std::int64_t v = mesh.cell_nodes[i];
-    if (v < 0 || v >= mesh.n_nodes)
+    if (v < 0 || v >= globalNodes(mesh))
       bad("cell " + std::to_string(i / kNodesPerHex) + " references node " + std::to_string(v) +
-          " outside [0, " + std::to_string(mesh.n_nodes) + ")");
+          " outside [0, " + std::to_string(globalNodes(mesh)) + ")");
   }
   for (std::size_t i = 0; i < fields.size(); ++i) {
     const CellField& f = fields[i];
@@ -374,7 +259,7 @@ std::string SnapshotSeries::write(double time, const SnapshotMesh& mesh,
   validate(time, mesh, fields);
 
   const std::string stem = series_name_ + index_suffix(count());
-  Entry entry{time, stem + ".h5", mesh.n_nodes, mesh.n_cells, {}};
+  Entry entry{time, stem + ".h5", globalNodes(mesh), globalCells(mesh), {}};
   entry.fields.reserve(fields.size());
   for (const CellField& f : fields) entry.fields.push_back({f.name, f.components});
 
@@ -397,6 +282,10 @@ std::string SnapshotSeries::write(double time, const SnapshotMesh& mesh,
   }
 
   try {
+    if (!parallel::isRoot()) {  // the light data is rank 0's
+      entries_.push_back(std::move(entry));
+      return h5_path;
+    }
     write_text_file_atomically(xmf_path,
                                std::string(kXdmfHeader) + grid_xml(entry, "    ") + kXdmfFooter);
 

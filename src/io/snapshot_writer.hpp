@@ -12,8 +12,8 @@
 // The .xmf files reference the .h5 files by relative file name, so the directory can be
 // moved or copied as a whole.
 //
-// Plain host C++17 + the HDF5 C API; no Kokkos, no MPI calls (yet). Device data must be
-// copied to host (e.g. Kokkos::create_mirror_view_and_copy) before calling write().
+// Plain host C++17 + the HDF5 C API (MPI-IO through src/io/hdf5_rows.hpp); no Kokkos. Device data
+// must be copied to host (e.g. Kokkos::create_mirror_view_and_copy) before calling write().
 #pragma once
 
 #include <cstdint>
@@ -42,11 +42,19 @@ struct CellField {
 
 // Host view of the mesh. node_xyz: 3 * n_nodes (x, y, z per node);
 // cell_nodes: 8 * n_cells zero-based node indices in VTK_HEXAHEDRON order.
+// A decomposed run (DESIGN §6) passes each rank's owned nodes and cells with
+// their global rows (increasing) and the global counts; cell_nodes then hold
+// global node numbers. Every rank calls write() (collective MPI-IO); the file
+// is the one a single rank would write.
 struct SnapshotMesh {
   std::int64_t n_nodes;
   const double* node_xyz;
   std::int64_t n_cells;
   const std::int64_t* cell_nodes;
+  const std::int64_t* node_rows = nullptr;  // global row of each node (null: 0..n_nodes-1)
+  const std::int64_t* cell_rows = nullptr;  // global row of each cell (null: 0..n_cells-1)
+  std::int64_t n_global_nodes = -1;         // -1: n_nodes
+  std::int64_t n_global_cells = -1;         // -1: n_cells
 };
 
 // A time series of snapshots sharing one directory and one base name.
@@ -60,12 +68,6 @@ struct SnapshotMesh {
 // Note: a new SnapshotSeries always starts at index 0 and overwrites existing files of the
 // same series in the directory (no restart/append support yet).
 //
-// Parallel extension (not implemented; serial now): see the comment above
-// write_snapshot_h5() in snapshot_writer.cpp. In short: open the file with an MPI-IO file
-// access property list, create datasets with the global sizes, let each rank select its
-// [offset, offset + count) row slab with a hyperslab and write collectively; rank 0 alone
-// writes the .xmf files. The internal dataset writer already takes (global rows, row
-// offset, local rows), so only the property lists and the offset computation change.
 class SnapshotSeries {
  public:
   // Creates `directory` (and parents) if needed; throws std::runtime_error if it cannot.
