@@ -53,7 +53,8 @@ int runCommandLine(int argc, char* argv[]) {
   std::string problem_name, mode = "lagrange", input, output;
   double scale = 1.0, t_end = 0.0, cfl = 0.0;
   int order = 0;
-  long output_every = 0;
+  long output_every = 0, checkpoint_every = 0;
+  std::string restart_file;
   std::vector<std::string> assignments;
   std::vector<double> output_times;
   bool quiet = false, list = false, print_config = false;
@@ -73,6 +74,10 @@ int runCommandLine(int argc, char* argv[]) {
       ->delimiter(',');
   app.add_option("--output-every", output_every, "snapshot every N steps")
       ->check(CLI::NonNegativeNumber);
+  app.add_option("--checkpoint-every", checkpoint_every,
+                 "write <output>/checkpoint.h5 every N steps (and when a run fails)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--restart", restart_file, "continue the run saved in this checkpoint file");
   app.add_flag("--quiet", quiet, "no progress line");
   app.add_flag("--list", list, "list the built-in problems");
   app.add_flag("--print-config", print_config,
@@ -142,6 +147,8 @@ int runCommandLine(int argc, char* argv[]) {
     options.output_times = output_times;
     options.output_every = output_every;
     options.quiet = quiet;
+    options.checkpoint_every = checkpoint_every;
+    options.restart_file = restart_file;
 
     const RunResult result = runProblem(options);
     if (!parallel::isRoot()) {  // rank 0 reports; every rank returns the same code

@@ -12,6 +12,7 @@
 
 #include <unistd.h>
 
+#include "checkpoint.hpp"
 #include "decomposition.hpp"
 #include "diagnostics.hpp"
 #include "io/snapshot_writer.hpp"
@@ -157,6 +158,20 @@ void writeSnapshot(io::SnapshotSeries& series, const FinalFields& fields, const 
       std::int64_t(n_nodes), xyz.data(),       std::int64_t(n_cells), connectivity.data(),
       node_rows.data(),      cell_rows.data(), mesh.n_global_nodes,   mesh.n_global_cells};
   series.write(fields.time, snapshot_mesh, cell_fields);
+}
+
+// The header and the lines of steps <= last_step of an existing history.csv
+// ("" if there is none): what a restart from step last_step keeps.
+std::string historyUpTo(const std::string& path, long last_step) {
+  std::ifstream in(path);
+  std::string line, kept;
+  if (!in || !std::getline(in, line)) return "";
+  kept = line + '\n';
+  while (std::getline(in, line)) {
+    if (std::atol(line.c_str()) > last_step) break;
+    kept += line + '\n';
+  }
+  return kept;
 }
 
 // A mesh that cannot fit in memory is bad input, said before anything is
@@ -422,6 +437,33 @@ RunResult runProblem(const RunOptions& options) {
     }
   }
 
+  // --- restart (DESIGN §6): the evolved state and the loop's counters of a
+  // checkpoint; the derived fields follow from the same geometry kernel.
+  LoopState loop;
+  loop.problem = options.problem;
+  loop.mode = options.mode;
+  const bool restart = !options.restart_file.empty();
+  if (restart) {
+    std::string error;  // found by one rank, reported by all
+    try {
+      loop = readCheckpoint(options.restart_file, mesh, state, options.problem, options.mode);
+    } catch (const std::exception& bad) {
+      error = bad.what();
+    }
+    error = parallel::firstMessage(error);
+    if (!error.empty()) throw ConfigError(error);
+    if (!(loop.time < t_end)) {
+      throw ConfigError("checkpoint '" + options.restart_file +
+                        "' is at t = " + std::to_string(loop.time) + ", not before t_end");
+    }
+    limit = lagrange.computeGeometry();
+    if (limit.val < 0.0) {
+      throw ConfigError("checkpoint '" + options.restart_file + "' holds an invalid state: " +
+                        describeInvalidCell(limit, loop.step, "restart"));
+    }
+    lagrange.saveStartOfStep();
+  }
+
   // --- outputs
   const std::string& dir = options.output_dir;
   std::unique_ptr<io::SnapshotSeries> snapshots;
@@ -434,16 +476,23 @@ RunResult runProblem(const RunOptions& options) {
     if (error) {
       output_error = "cannot create output directory '" + dir + "': " + error.message();
     } else {
+      // A restart keeps the history of the steps it does not redo.
+      const std::string kept = restart ? historyUpTo(dir + "/history.csv", loop.step) : "";
       history.open(dir + "/history.csv");
       if (!history) output_error = "cannot write '" + dir + "/history.csv'";
+      if (kept.empty()) {
+        history << "step,t,dt,dt_reason,mass,momentum_x,momentum_y,momentum_z,kinetic_energy,"
+                   "internal_energy,total_energy\n";
+      }
+      history << kept << std::setprecision(15);
     }
-    history << "step,t,dt,dt_reason,mass,momentum_x,momentum_y,momentum_z,kinetic_energy,"
-               "internal_energy,total_energy\n"
-            << std::setprecision(15);
   }
   output_error = parallel::firstMessage(output_error);
   if (!output_error.empty()) throw ConfigError(output_error);
-  if (options.write_files) snapshots = std::make_unique<io::SnapshotSeries>(dir, "fields");
+  if (options.write_files) {
+    snapshots = std::make_unique<io::SnapshotSeries>(dir, "fields");
+    snapshots->resume(loop.snapshot_times);
+  }
   auto writeHistory = [&](long step, double t, double dt, const char* reason, const Totals& tot) {
     if (!history.is_open()) return;
     history << step << ',' << t << ',' << dt << ',' << reason << ',' << tot.mass << ','
@@ -456,24 +505,37 @@ RunResult runProblem(const RunOptions& options) {
     writeSnapshot(*snapshots, copyFields(mesh, nullptr, state, t), mesh);
   };
 
-  std::vector<std::pair<double, double>> probe;
-  if (problem.probe) probe.emplace_back(0.0, problem.probe(mesh, state));
-  const Totals initial = computeTotals(mesh, state);
-  writeHistory(0, 0.0, 0.0, "initial", initial);
-  snapshot(0.0);
-  std::vector<double> pending_outputs = options.output_times;
+  std::vector<std::pair<double, double>> probe = loop.probe;
+  Totals initial = loop.initial;
+  if (!restart) {
+    if (problem.probe) probe.emplace_back(0.0, problem.probe(mesh, state));
+    initial = computeTotals(mesh, state);
+    writeHistory(0, 0.0, 0.0, "initial", initial);
+    snapshot(0.0);
+  }
+  std::vector<double> pending_outputs;  // after the initial (or restart) time
+  for (double t_out : options.output_times) {
+    if (t_out > loop.time) pending_outputs.push_back(t_out);
+  }
   std::sort(pending_outputs.begin(), pending_outputs.end());
-  pending_outputs.erase(std::remove(pending_outputs.begin(), pending_outputs.end(), 0.0),
-                        pending_outputs.end());
 
   // --- time loop (DESIGN §3)
   RunResult result;
   result.cells = mesh.n_global_cells;
-  Vec3 impulse{0, 0, 0};  // boundary impulse and work, for the conservation audit
-  double work = 0.0;
-  double mass_in = 0.0;  // what the remap brought in through a moving outer boundary
-  double t = 0.0, dt_prev = 0.0;
-  long step = 0;
+  Vec3 impulse = loop.impulse;  // boundary impulse and work, for the conservation audit
+  double work = loop.work;
+  double mass_in = loop.mass_in;  // what the remap brought in through a moving outer boundary
+  double t = loop.time, dt_prev = loop.dt_prev;
+  long step = loop.step;
+  // A checkpoint of the state at t (collective; atomic replacement of the last one).
+  auto checkpoint = [&] {
+    if (!snapshots) return;
+    auto scope = timers.scope(Phase::Output);
+    const LoopState now{
+        options.problem, options.mode,       t,    dt_prev, step, impulse, work, mass_in,
+        initial,         snapshots->times(), probe};
+    writeCheckpoint(dir + "/checkpoint.h5", mesh, state, now);
+  };
   const auto wall_start = std::chrono::steady_clock::now();
   auto last_progress = wall_start;
   auto elapsed = [&] {
@@ -550,6 +612,9 @@ RunResult runProblem(const RunOptions& options) {
       auto scope = timers.scope(Phase::Diagnostics);
       probe.emplace_back(t, problem.probe(mesh, state));
     }
+    if (options.checkpoint_every > 0 && step % options.checkpoint_every == 0 && t < t_end) {
+      checkpoint();
+    }
     if (!options.quiet && parallel::isRoot()) {
       const auto now = std::chrono::steady_clock::now();
       if (std::chrono::duration<double>(now - last_progress).count() > 3.0) {
@@ -557,16 +622,18 @@ RunResult runProblem(const RunOptions& options) {
         const double seconds = elapsed();
         std::fprintf(stderr, "[lagremap] %5.1f%%  step %ld  t %.6g  dt %.3g (%s)  ETA %s\n",
                      100.0 * t / t_end, step, t, dt, reason,
-                     formatSeconds(seconds * (t_end - t) / t).c_str());
+                     formatSeconds(seconds * (t_end - t) / (t - loop.time)).c_str());
       }
     }
   }
   result.wall_seconds = elapsed();
   result.failed = !result.failure.empty();
+  if (result.failed) checkpoint();  // the last good state, to restart from
   result.steps = step;
   result.time = t;
+  const long steps_run = step - loop.step;  // by this process (a restart continues a run)
   result.cell_steps_per_second =
-      step > 0 ? double(mesh.n_global_cells) * step / result.wall_seconds : 0;
+      steps_run > 0 ? double(mesh.n_global_cells) * steps_run / result.wall_seconds : 0;
 
   // --- conservation audit: change of each total minus what the boundaries put in.
   // Scales: the largest energy the run held or received (a body at rest

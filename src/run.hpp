@@ -20,6 +20,8 @@ struct RunOptions {
   long output_every = 0;             // snapshot every N steps (0: never)
   bool quiet = false;                // no progress line
   bool write_files = true;           // false: no output directory at all (benchmarks, tests)
+  long checkpoint_every = 0;         // checkpoint.h5 in the output directory every N steps
+  std::string restart_file;          // continue the run of this checkpoint
 };
 
 // Every key a run has: the common numerics keys plus the problem's.

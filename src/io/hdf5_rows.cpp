@@ -166,4 +166,30 @@ double readScalarAttribute(hid_t loc, const char* name, const std::string& file)
   return value;
 }
 
+void writeTextAttribute(hid_t loc, const char* name, const std::string& value,
+                        const std::string& file) {
+  Handle type(check(H5Tcopy(H5T_C_S1), "H5Tcopy", file), H5Tclose);
+  check(H5Tset_size(type.get(), value.empty() ? 1 : value.size()), "H5Tset_size", file);
+  Handle space(check(H5Screate(H5S_SCALAR), "H5Screate", file), H5Sclose);
+  Handle attribute(check(H5Acreate2(loc, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
+                         "create attribute", file),
+                   H5Aclose);
+  const std::string padded = value.empty() ? std::string(1, '\0') : value;
+  check(H5Awrite(attribute.get(), type.get(), padded.data()), "write attribute", file);
+}
+
+std::string readTextAttribute(hid_t loc, const char* name, const std::string& file) {
+  if (H5Aexists(loc, name) <= 0) {
+    throw std::runtime_error("'" + file + "' has no attribute '" + std::string(name) + "'");
+  }
+  Handle attribute(check(H5Aopen(loc, name, H5P_DEFAULT), "open attribute", file), H5Aclose);
+  Handle type(check(H5Aget_type(attribute.get()), "H5Aget_type", file), H5Tclose);
+  if (H5Tget_class(type.get()) != H5T_STRING || H5Tis_variable_str(type.get()) > 0) {
+    throw std::runtime_error("'" + file + "': attribute '" + std::string(name) + "' is not text");
+  }
+  std::string value(H5Tget_size(type.get()), '\0');
+  check(H5Aread(attribute.get(), type.get(), value.data()), "read attribute", file);
+  return value.substr(0, value.find('\0'));
+}
+
 }  // namespace lagremap::io

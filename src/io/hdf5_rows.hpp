@@ -84,5 +84,8 @@ void readRows(hid_t loc, const std::string& name, hid_t mem_type, const RowSelec
 
 void writeScalarAttribute(hid_t loc, const char* name, double value, const std::string& file);
 double readScalarAttribute(hid_t loc, const char* name, const std::string& file);
+void writeTextAttribute(hid_t loc, const char* name, const std::string& value,
+                        const std::string& file);
+std::string readTextAttribute(hid_t loc, const char* name, const std::string& file);
 
 }  // namespace lagremap::io

@@ -250,6 +250,20 @@ int SnapshotSeries::count() const {
   return static_cast<int>(entries_.size());
 }
 
+void SnapshotSeries::resume(const std::vector<double>& times) {
+  entries_.clear();
+  for (std::size_t i = 0; i < times.size(); ++i) {
+    // sizes and fields are those of the next write (a run's snapshots all match)
+    entries_.push_back({times[i], series_name_ + index_suffix(int(i)) + ".h5", -1, -1, {}});
+  }
+}
+
+const std::vector<double> SnapshotSeries::times() const {
+  std::vector<double> out;
+  for (const Entry& e : entries_) out.push_back(e.time);
+  return out;
+}
+
 std::string SnapshotSeries::series_xmf_path() const {
   return (fs::path(directory_) / (series_name_ + ".xmf")).string();
 }
@@ -263,6 +277,12 @@ std::string SnapshotSeries::write(double time, const SnapshotMesh& mesh,
   entry.fields.reserve(fields.size());
   for (const CellField& f : fields) entry.fields.push_back({f.name, f.components});
 
+  for (Entry& e : entries_) {  // resumed entries take this snapshot's sizes and fields
+    if (e.n_cells >= 0) continue;
+    e.n_nodes = entry.n_nodes;
+    e.n_cells = entry.n_cells;
+    e.fields = entry.fields;
+  }
   const std::string h5_path = (fs::path(directory_) / entry.h5_name).string();
   const std::string xmf_path = (fs::path(directory_) / (stem + ".xmf")).string();
   auto remove_outputs = [&] {

@@ -65,8 +65,8 @@ struct SnapshotMesh {
 // std::invalid_argument. A failed write() leaves count() unchanged and removes the
 // partially written .h5 file.
 //
-// Note: a new SnapshotSeries always starts at index 0 and overwrites existing files of the
-// same series in the directory (no restart/append support yet).
+// Note: a new SnapshotSeries starts at index 0 and overwrites existing files of the same
+// series in the directory, unless resume() says which are already there.
 //
 class SnapshotSeries {
  public:
@@ -80,6 +80,12 @@ class SnapshotSeries {
 
   // Number of snapshots successfully written so far.
   int count() const;
+
+  // Continues a series whose first snapshots (at `times`) are already in the
+  // directory (a restarted run): the next write gets the next index, and the
+  // series .xmf lists the earlier files too, with the same mesh sizes and fields.
+  void resume(const std::vector<double>& times);
+  const std::vector<double> times() const;
 
   const std::string& directory() const { return directory_; }
   const std::string& series_name() const { return series_name_; }

@@ -1,0 +1,43 @@
+// Checkpoint and restart (DESIGN §6): one HDF5 file holding the evolved state
+// of every cell and node by global id, and the time loop's counters, written
+// collectively by all ranks. The derived fields (geometry, pressures, sound
+// speeds) are recomputed on restart from the evolved ones by the same kernel,
+// so a restart continues the run bit for bit, on any rank count.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "diagnostics.hpp"
+#include "mesh.hpp"
+#include "state.hpp"
+
+namespace lagremap {
+
+// Everything of the time loop besides the fields.
+struct LoopState {
+  std::string problem, mode;
+  double time = 0.0, dt_prev = 0.0;
+  long step = 0;
+  Vec3 impulse{0, 0, 0};  // boundary impulse and work so far (conservation audit)
+  double work = 0.0, mass_in = 0.0;
+  Totals initial;                      // totals of the initial state
+  std::vector<double> snapshot_times;  // of the snapshots already in the output directory
+  std::vector<std::pair<double, double>> probe;
+};
+
+// Writes `path` atomically: a temporary file, then a rename once every rank
+// has closed it, so a crash mid-write leaves the previous checkpoint intact.
+// Collective. Throws std::runtime_error on an I/O failure.
+void writeCheckpoint(const std::string& path, const Mesh& mesh, const State& state,
+                     const LoopState& loop);
+
+// Reads this rank's cells and nodes (owned and ghosts) of the checkpoint into
+// the state and the mesh's node positions and returns the loop state.
+// Collective. Throws std::runtime_error naming the file for a missing,
+// truncated or corrupted file, or one of another problem, mode or mesh.
+LoopState readCheckpoint(const std::string& path, Mesh& mesh, State& state,
+                         const std::string& problem, const std::string& mode);
+
+}  // namespace lagremap
