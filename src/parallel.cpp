@@ -4,13 +4,23 @@
 
 namespace lagremap::parallel {
 namespace {
+int serial_scopes = 0;  // SerialScope objects alive
+
 bool active() {
+  if (serial_scopes > 0) return false;
   int initialized = 0, finalized = 0;
   MPI_Initialized(&initialized);
   MPI_Finalized(&finalized);
   return initialized && !finalized;
 }
 }  // namespace
+
+SerialScope::SerialScope() {
+  ++serial_scopes;
+}
+SerialScope::~SerialScope() {
+  --serial_scopes;
+}
 
 int rank() {
   int r = 0;
@@ -95,7 +105,10 @@ Session::Session(int& argc, char**& argv) {
 }
 
 Session::~Session() {
-  if (active()) MPI_Finalize();
+  int initialized = 0, finalized = 0;
+  MPI_Initialized(&initialized);
+  MPI_Finalized(&finalized);
+  if (initialized && !finalized) MPI_Finalize();
 }
 
 }  // namespace lagremap::parallel

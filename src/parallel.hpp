@@ -34,6 +34,17 @@ std::string broadcast(const std::string& text);
 std::string firstMessage(const std::string& message);
 void barrier();
 
+// While alive, this process runs as a single rank (size() == 1, no MPI
+// calls): the MPI tests compute single-rank references next to their
+// decomposed runs. Not for use while a decomposed run is under way.
+class SerialScope {
+ public:
+  SerialScope();
+  ~SerialScope();
+  SerialScope(const SerialScope&) = delete;
+  SerialScope& operator=(const SerialScope&) = delete;
+};
+
 // MPI_Init for the executable (threads: funneled; Kokkos threads never call MPI)
 // and MPI_Finalize at scope exit.
 class Session {

@@ -201,7 +201,42 @@ TEST(CommandLine, FailureMidRunGivesExitCodeThreeAndWritesLastGoodState) {
     text << summary.rdbuf();
     EXPECT_NE(text.str().find("\"status\": \"failed\""), std::string::npos) << out;
     EXPECT_TRUE(std::filesystem::exists(out + "/fields_00001.h5")) << out;
+    EXPECT_TRUE(std::filesystem::exists(out + "/checkpoint.h5")) << out;  // to restart from
   }
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CommandLine, RestartFinishesAStoppedRunAndRefusesABadCheckpoint) {
+  const std::string dir = testing::scratchDir("cli_restart");
+  const std::string run = "--problem sod --scale 0.5 --quiet --output " + dir + "/run";
+  EXPECT_EQ(runLagremap(run + " --set numerics.max_steps=40").exit_code, 3);
+  const std::string checkpoint = dir + "/run/checkpoint.h5";
+  ASSERT_TRUE(std::filesystem::exists(checkpoint));
+  const auto resumed = runLagremap(run + " --restart " + checkpoint);
+  EXPECT_EQ(resumed.exit_code, 0) << resumed.output;
+  // history.csv: the 40 steps before the stop once, then the rest.
+  std::ifstream history(dir + "/run/history.csv");
+  std::string line;
+  long lines = 0, step_40 = 0;
+  while (std::getline(history, line)) {
+    ++lines;
+    step_40 += line.rfind("40,", 0) == 0;
+  }
+  EXPECT_EQ(step_40, 1);
+  EXPECT_GT(lines, 42);
+
+  std::filesystem::copy_file(checkpoint, dir + "/truncated.h5");
+  std::filesystem::resize_file(dir + "/truncated.h5", std::filesystem::file_size(checkpoint) / 3);
+  for (const std::string& bad : {dir + "/truncated.h5", dir + "/none.h5"}) {
+    const auto result = runLagremap(run + " --restart " + bad);
+    EXPECT_EQ(result.exit_code, 2) << result.output;
+    EXPECT_EQ(lineCount(result.error), 1) << result.error;
+    EXPECT_NE(result.error.find(bad), std::string::npos) << result.error;
+  }
+  const auto other =
+      runLagremap("--problem sedov --quiet --output " + dir + "/x --restart " + checkpoint);
+  EXPECT_EQ(other.exit_code, 2);
+  EXPECT_NE(other.error.find("not sedov"), std::string::npos) << other.error;
   std::filesystem::remove_all(dir);
 }
 

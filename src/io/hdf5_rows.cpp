@@ -112,7 +112,7 @@ void writeRows(hid_t loc, const std::string& name, hid_t file_type, hid_t mem_ty
                  H5Dclose);
   // One rank with nothing to write skips the call; in a collective write every
   // rank takes part, an empty one with empty selections.
-  if (selection.local_rows == 0 && parallel::size() == 1) return;
+  if (selection.global_rows == 0 || (selection.local_rows == 0 && parallel::size() == 1)) return;
   selectRows(file_space.get(), selection, cols, file);
   Handle memory_space(check(H5Screate_simple(rank, local_dims, nullptr), "H5Screate_simple", file),
                       H5Sclose);
@@ -138,6 +138,7 @@ void readRows(hid_t loc, const std::string& name, hid_t mem_type, const RowSelec
   if (dims[0] != hsize_t(selection.global_rows) || (rank == 2 && dims[1] != hsize_t(cols))) {
     throw std::runtime_error("'" + file + "': dataset '" + name + "' has the wrong shape");
   }
+  if (selection.global_rows == 0) return;  // an empty table: nothing to read
   const hsize_t local_dims[2] = {hsize_t(selection.local_rows), hsize_t(cols)};
   selectRows(file_space.get(), selection, cols, file);
   Handle memory_space(check(H5Screate_simple(rank, local_dims, nullptr), "H5Screate_simple", file),
