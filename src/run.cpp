@@ -592,10 +592,10 @@ RunResult runProblem(const RunOptions& options) {
     json.beginObject(check.name)
         .value("value", check.value)
         .value("reference", check.reference)
-        .value("tolerance", check.tolerance)
-        .value("pass", check.pass())
-        .value("note", check.note)
-        .endObject();
+        .value("tolerance", check.tolerance);
+    if (check.lagrange_reference) json.value("lagrange_reference", *check.lagrange_reference);
+    if (check.paper) json.value("paper", *check.paper);
+    json.value("pass", check.pass()).value("note", check.note).endObject();
   }
   json.endObject();
   json.beginObject("config");
