@@ -575,6 +575,7 @@ RunResult runProblem(const RunOptions& options) {
     for (int k = 0; k < state.n_materials; ++k) {
       const InterfaceMeasure measure = measureInterface(mesh, result.fields, k);
       json.beginObject("material_" + std::to_string(k))
+          .value("solid", setup.materials[k].strength != StrengthKind::None)
           .value("mixed_cells", measure.mixed_cells)
           .value("area", measure.area)
           .value("mixed_cells_per_unit_area",

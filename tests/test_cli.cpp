@@ -142,8 +142,9 @@ TEST(CommandLine, RemapRunReportsItsInterfaces) {
   std::stringstream text;
   text << summary.rdbuf();
   const std::string json = text.str();
-  for (const char* field : {"\"mode\": \"remap\"", "\"interfaces\"", "\"material_0\"",
-                            "\"mixed_cells_per_unit_area\"", "\"smeared_width\""}) {
+  for (const char* field :
+       {"\"mode\": \"remap\"", "\"interfaces\"", "\"material_0\"", "\"mixed_cells_per_unit_area\"",
+        "\"smeared_width\"", "\"solid\": true", "\"solid\": false"}) {
     EXPECT_NE(json.find(field), std::string::npos) << field;
   }
   // The alpha = 1/2 surface is the bar's outline off the wall (5 + 5 + 1 m) in
