@@ -216,19 +216,15 @@ class Run:
         """Indices of the solid materials of a multi-material snapshot.
 
         summary.json's interfaces block says which materials are solids;
-        without it (older runs) every material with a volume fraction is
-        taken, which draws the gas-solid boundary all the same.
+        without it (runs older than the flag) every material but the last is
+        taken: the problems list the gas last.
         """
-        present = [k for k in range(snapshot.n_materials)]
+        present = list(range(snapshot.n_materials))
         interfaces = self.summary.get("interfaces")
-        if not isinstance(interfaces, dict):
-            return present
-        flagged = [k for k in present
-                   if isinstance(interfaces.get(f"material_{k}"), dict)
-                   and "solid" in interfaces[f"material_{k}"]]
-        if len(flagged) != len(present):
-            return present
-        return [k for k in present if interfaces[f"material_{k}"]["solid"]]
+        flags = [(interfaces or {}).get(f"material_{k}", {}) for k in present]
+        if not all(isinstance(f, dict) and "solid" in f for f in flags):
+            return present[:-1] or present
+        return [k for k, f in zip(present, flags) if f["solid"]]
 
 
 def read_run(directory: str) -> Run:
@@ -689,7 +685,8 @@ def plot_shell(run: Run, out_path: str) -> str:
     mesh_name = "shell_mesh_z0.csv"
     cells = run.table(mesh_name, CORNER_COLUMNS + ["density"])
     polys = slice_polygons(cells, run.path(mesh_name))
-    fig, (ax_mesh, ax_r) = plt.subplots(1, 2, figsize=(13, 5.4))
+    # Constrained layout: the square map's title would meet the suptitle.
+    fig, (ax_mesh, ax_r) = plt.subplots(1, 2, figsize=(13, 6.4), constrained_layout=True)
     art = draw_cells(ax_mesh, polys, cells["density"])
     fig.colorbar(art, ax=ax_mesh, label=LABELS["rho"], shrink=0.85)
     ax_mesh.autoscale_view()
@@ -721,9 +718,9 @@ def plot_shell(run: Run, out_path: str) -> str:
     ax_r.set_xlabel(LABELS["t"])
     ax_r.set_ylabel("radius [m]")
     ax_r.grid(alpha=0.3)
-    ax_r.legend(loc="best", fontsize="small")
+    # Below the axes: the radii curves fill the panel.
+    ax_r.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2, fontsize="small")
     fig.suptitle(pair_title(run, "Beryllium shell collapse"))
-    fig.tight_layout()
     return save(fig, out_path)
 
 
@@ -1348,8 +1345,10 @@ def plot_field_maps(run: Run, out_path: str) -> str:
     polys = snap.layer_polygons()
     extent = polys.reshape(-1, 2).max(axis=0) - polys.reshape(-1, 2).min(axis=0)
     wide = extent[0] > 1.5 * extent[1]
+    # Wide domains stacked, each map about 8 inches wide plus its colour bar.
+    aspect = float(extent[0] / max(extent[1], 1e-300))
     fig, axes = plt.subplots(2 if wide else 1, 1 if wide else 2,
-                             figsize=(11, 8.5) if wide else (13, 5.6))
+                             figsize=(11, min(8.5, 2.0 + 16.0 / aspect)) if wide else (13, 5.6))
     handles = []
     for ax, field in zip(axes, ("density", "pressure")):
         handles = draw_field_map(fig, ax, run, snap, field) or handles
