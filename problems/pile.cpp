@@ -94,6 +94,7 @@ std::vector<Check> finishPile(const Config& config, const FinalFields& fields,
     checks.push_back({"wall_stress_after", meanOver(fields.probe, 3.25 * transit, 3.75 * transit),
                       0.0, tol, "mean wall sigma_xx on [3.25 L/c, 3.75 L/c] (exact 0)"});
   }
+  setModeIndependentReferences(config, checks);
   return checks;
 }
 

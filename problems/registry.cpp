@@ -33,6 +33,12 @@ bool Check::pass() const {
   return std::isfinite(value) && std::abs(value - reference) <= tolerance;
 }
 
+void setModeIndependentReferences(const Config& config, std::vector<Check>& checks) {
+  if (!config.remapMode()) return;
+  for (Check& check : checks)
+    if (!check.lagrange_reference) check.lagrange_reference = check.reference;
+}
+
 void declareMeshKeys(Config& config, int nx, int ny, int nz) {
   config.addInteger("mesh.nx", nx, "cells along x", true);
   config.addInteger("mesh.ny", ny, "cells along y", true);

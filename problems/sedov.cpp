@@ -144,6 +144,7 @@ std::vector<Check> finishSedov(const Config& config, const FinalFields& fields,
     checks.push_back({"octant_symmetry", asymmetry / std::max(rho_max, 1e-300), 0.0, 1e-8,
                       "max |rho(i,j,k) - rho(permuted)| / max rho"});
   }
+  setModeIndependentReferences(config, checks);
   return checks;
 }
 

@@ -129,6 +129,7 @@ std::vector<Check> finishWilkins(const Config& config, const FinalFields& fields
       {"plastic_density", sum_rho / n, 2985.6, tol * 2985.6,
        "mean density behind the shock (exact two-wave solution)"}};
   checks.insert(checks.end(), plastic.begin(), plastic.end());
+  setModeIndependentReferences(config, checks);
   return checks;
 }
 

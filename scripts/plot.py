@@ -2,18 +2,32 @@
 """Draw PNG figures from a lagremap run directory.
 
 Usage:
-    scripts/plot.py DIR [--out OUTDIR] [--show-list]
+    scripts/plot.py DIR [--out OUTDIR] [--compare LAGRANGE_DIR | --no-compare]
+                        [--show-list]
 
 DIR is a lagremap output directory.  It must hold ``summary.json``; every
-other input (history.csv, sod_profile.csv, radial.csv, slice_z.csv) is
-optional, and a plot whose input is missing is skipped silently, so the
-script works on partial runs, quick runs with output switched off, and
-directories copied around without their large CSV files.
+other input (history.csv, the problems' CSVs, radial.csv, slice_z.csv, the
+HDF5 snapshots listed in fields.xmf) is optional, and a plot whose input is
+missing is skipped silently, so the script works on partial runs, quick runs
+with output switched off, and directories copied around without their large
+files.
+
+Overlays, as the paper's figures: the curves of a remap run and of the
+lagrange run of the same problem share one figure, lagrange solid and remap
+dashed (wilkins profiles, pile wall stress, taylor length and outline, shell
+radii; the beam's tip: lagrange curve, remap points).  The lagrange run is
+``--compare``'s, or for a remap run in DIR a sibling directory DIR_lagrange
+(what scripts/run.sh writes) or PROBLEM_lagrange when one exists; without
+one the overlays show DIR's run alone, with a note.  With both runs,
+comparison.md in the output directory puts their checks side by side.
+Field maps (density, pressure) of 2D and multi-material runs draw the
+alpha = 0.5 contour of each solid material from the snapshots.
 
 For every PNG written the script prints its path, one per line, on stdout,
 so callers (CI, the regression scripts) can collect the figures without
-knowing which ones a given problem produces.  ``--show-list`` prints the
-plots this directory supports instead of drawing them.
+knowing which ones a given problem produces; notes (an optional input or
+run missing) go to stderr.  ``--show-list`` prints the plots this directory
+supports instead of drawing them.
 
 Exit status: 0 on success; 1 if some input file was present but could not be
 plotted (a warning names it on stderr, the other plots are still drawn);
@@ -24,10 +38,12 @@ All quantities are taken to be SI, because that is what the C++ code writes.
 
 import argparse
 import csv
+import glob
 import json
 import math
 import os
 import sys
+import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from functools import partial
 from typing import Callable, Dict, List, Optional, Tuple
@@ -37,7 +53,8 @@ import matplotlib
 
 matplotlib.use("Agg")  # never needs a display: runs in CI and over ssh
 import matplotlib.pyplot as plt  # noqa: E402  (must follow matplotlib.use)
-from matplotlib.collections import PolyCollection  # noqa: E402
+from matplotlib import patheffects  # noqa: E402
+from matplotlib.collections import LineCollection, PolyCollection  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 from matplotlib.ticker import SymmetricalLogLocator  # noqa: E402
 from matplotlib.tri import Triangulation  # noqa: E402
@@ -83,6 +100,11 @@ SPARE_COLOURS = ["tab:brown", "tab:pink", "tab:olive", "tab:cyan", "tab:gray"]
 
 class InputError(Exception):
     """An input file exists but its contents cannot be plotted."""
+
+
+class SkipPlot(Exception):
+    """An optional input of a plot (a field, the h5py module) is missing: the
+    plot is skipped with a note, which is not an error."""
 
 
 # --------------------------------------------------------------------------
@@ -133,16 +155,28 @@ def require(table: Dict[str, np.ndarray], names: List[str], path: str) -> None:
 
 
 class Run:
-    """A run directory: its summary plus lazily read, cached CSV files.
+    """A run directory: its summary plus lazily read, cached CSV files and
+    HDF5 snapshots.
 
     Caching matters because radial.csv (up to ~250k rows) feeds two figures
-    and should be parsed once.
+    and should be parsed once.  ``partner`` is the run of the other mode the
+    overlays compare it with (set by main, None when there is none).
     """
 
     def __init__(self, directory: str, summary: dict):
         self.dir = directory
         self.summary = summary
+        self.partner: Optional["Run"] = None
         self._tables: Dict[str, Dict[str, np.ndarray]] = {}
+        self._snapshots: Optional[List["Snapshot"]] = None
+
+    @property
+    def mode(self) -> str:
+        return str(self.summary.get("mode", "lagrange"))
+
+    @property
+    def problem(self) -> str:
+        return str(self.summary.get("problem", ""))
 
     def path(self, name: str) -> str:
         return os.path.join(self.dir, name)
@@ -162,26 +196,65 @@ class Run:
         c = (self.summary.get("checks") or {}).get(name)
         return c if isinstance(c, dict) else None
 
+    def config_int(self, key: str) -> Optional[int]:
+        """An integer key of the run's configuration (summary["config"]),
+        or None when absent or not an integer."""
+        value = (self.summary.get("config") or {}).get(key)
+        try:
+            return int(str(value))
+        except ValueError:
+            return None
 
-def load_run(directory: str) -> Run:
-    """Open DIR or exit 2 with a one-line message.
+    def snapshots(self) -> List["Snapshot"]:
+        """The run's HDF5 snapshots in time order (empty when it wrote none)."""
+        if self._snapshots is None:
+            shape = (self.config_int("mesh.nx"), self.config_int("mesh.ny"))
+            self._snapshots = list_snapshots(self.dir, shape)
+        return self._snapshots
+
+    def solid_materials(self, snapshot: "Snapshot") -> List[int]:
+        """Indices of the solid materials of a multi-material snapshot.
+
+        summary.json's interfaces block says which materials are solids;
+        without it (runs older than the flag) every material but the last is
+        taken: the problems list the gas last.
+        """
+        present = list(range(snapshot.n_materials))
+        interfaces = self.summary.get("interfaces")
+        flags = [(interfaces or {}).get(f"material_{k}", {}) for k in present]
+        if not all(isinstance(f, dict) and "solid" in f for f in flags):
+            return present[:-1] or present
+        return [k for k, f in zip(present, flags) if f["solid"]]
+
+
+def read_run(directory: str) -> Run:
+    """Open a run directory; InputError with a one-line reason if it is not one.
 
     summary.json is the marker of a lagremap run directory and carries the
     problem name that selects the plots, so without it nothing can be done.
     """
     if not os.path.isdir(directory):
-        fail(f"{directory}: no such directory")
+        raise InputError(f"{directory}: no such directory")
     summary_path = os.path.join(directory, "summary.json")
     if not os.path.isfile(summary_path):
-        fail(f"{directory}: no summary.json (not a lagremap output directory?)")
+        raise InputError(f"{directory}: no summary.json (not a lagremap output directory?)")
     try:
         with open(summary_path) as f:
             summary = json.load(f)
     except (OSError, ValueError) as exc:
-        fail(f"{summary_path}: unreadable: {' '.join(str(exc).split())}")
+        raise InputError(f"{summary_path}: unreadable: {' '.join(str(exc).split())}")
     if not isinstance(summary, dict):
-        fail(f"{summary_path}: top level is not a JSON object")
+        raise InputError(f"{summary_path}: top level is not a JSON object")
     return Run(directory, summary)
+
+
+def load_run(directory: str) -> Run:
+    """Open DIR or exit 2 with a one-line message."""
+    try:
+        return read_run(directory)
+    except InputError as exc:
+        fail(str(exc))
+        raise  # not reached: fail exits
 
 
 def fail(message: str) -> None:
@@ -190,15 +263,152 @@ def fail(message: str) -> None:
     sys.exit(EXIT_BAD_DIR)
 
 
+def note(message: str) -> None:
+    """A one-line remark on stderr: an optional input is missing and what is
+    drawn instead.  Not an error (the exit status is unchanged)."""
+    print(f"plot.py: note: {message}", file=sys.stderr)
+
+
+# --------------------------------------------------------------------------
+# The lagrange run an overlay compares a remap run with
+# --------------------------------------------------------------------------
+
+def partner_candidates(run: Run) -> List[str]:
+    """Where a remap run's lagrange reference usually is: a sibling directory
+    named after it (``out/taylor`` -> ``out/taylor_lagrange``, what
+    scripts/run.sh writes), or after the problem."""
+    directory = os.path.normpath(run.dir)
+    parent, base = os.path.split(directory)
+    names = [base + "_lagrange", base + "-lagrange"]
+    if "remap" in base:
+        names.append(base.replace("remap", "lagrange"))
+    if run.problem:
+        names += [run.problem + "_lagrange", run.problem + "-lagrange",
+                  os.path.join("lagrange", run.problem)]
+    paths = []
+    for name in names:
+        path = os.path.join(parent, name)
+        if os.path.normpath(path) != directory and path not in paths:
+            paths.append(path)
+    return paths
+
+
+def find_partner(run: Run, compare: Optional[str], auto: bool) -> Optional[Run]:
+    """The run to overlay with DIR's: --compare's, else (remap runs) a
+    lagrange run found next to DIR.  Missing or unsuitable: a note, None."""
+    if compare:
+        try:
+            partner = read_run(compare)
+        except InputError as exc:
+            note(f"--compare: {exc}; drawing {run.dir} alone")
+            return None
+    elif auto and run.mode == "remap":
+        found = [p for p in partner_candidates(run)
+                 if os.path.isfile(os.path.join(p, "summary.json"))]
+        partner = None
+        for path in found:
+            try:
+                candidate = read_run(path)
+            except InputError:
+                continue
+            if candidate.mode == "lagrange" and candidate.problem == run.problem:
+                partner = candidate
+                break
+        if partner is None:
+            note(f"no lagrange run of {run.problem or '?'} next to {run.dir} "
+                 f"(looked for {', '.join(os.path.basename(p) for p in partner_candidates(run)[:2])}); "
+                 f"the overlays show the remap run alone (--compare LAGRANGE_DIR names one)")
+            return None
+    else:
+        return None
+    if partner.problem != run.problem:
+        note(f"--compare: {partner.dir} is a '{partner.problem}' run, not "
+             f"'{run.problem}'; drawing {run.dir} alone")
+        return None
+    if os.path.realpath(partner.dir) == os.path.realpath(run.dir):
+        return None
+    return partner
+
+
+# Line style per mode, the paper's convention: lagrange solid, remap dashed.
+MODE_STYLE = {
+    "lagrange": {"ls": "-", "color": "tab:blue"},
+    "remap": {"ls": "--", "color": "tab:red"},
+}
+SECOND_STYLE = {"ls": ":", "color": "tab:green"}  # a compared run of the same mode
+LINE_WORDS = {"-": "solid", "--": "dashed", ":": "dotted"}
+
+
+@dataclass
+class Curve:
+    """One run as drawn in an overlay: its label and line style."""
+    run: Run
+    label: str
+    style: Dict[str, str]
+
+
+def overlay_runs(run: Run) -> List[Curve]:
+    """DIR's run and its partner, lagrange first (drawn under the remap one).
+
+    Two runs of the same mode (a --compare between two remap runs) are told
+    apart by their directory names and a dotted second line."""
+    runs = [run] + ([run.partner] if run.partner is not None else [])
+    runs.sort(key=lambda r: 0 if r.mode == "lagrange" else 1)
+    same_mode = len(runs) == 2 and runs[0].mode == runs[1].mode
+    curves = []
+    for i, r in enumerate(runs):
+        label = r.mode
+        if same_mode:
+            label += f" ({os.path.basename(os.path.normpath(r.dir))})"
+        style = dict(SECOND_STYLE if same_mode and i == 1
+                     else MODE_STYLE.get(r.mode, MODE_STYLE["lagrange"]))
+        curves.append(Curve(r, label, style))
+    return curves
+
+
+def curve_tables(run: Run, name: str, columns: List[str]) -> List[Tuple[Curve, Dict[str, np.ndarray]]]:
+    """The CSV `name` of every run of the overlay.  DIR's own must be
+    readable (InputError otherwise); a partner without it is left out with
+    a note, so the figure still shows DIR's run."""
+    result = []
+    for curve in overlay_runs(run):
+        if curve.run is run:
+            result.append((curve, run.table(name, columns)))
+            continue
+        if not curve.run.has(name):
+            note(f"{curve.run.dir} has no {name}; {name} drawn without its {curve.label} curve")
+            continue
+        try:
+            result.append((curve, curve.run.table(name, columns)))
+        except InputError as exc:
+            note(f"{curve.run.dir}: {exc}; drawn without its {curve.label} curve")
+    return result
+
+
+def pair_title(run: Run, what: str) -> str:
+    """Title of an overlay: the runs it compares, or run_title's line alone."""
+    if run.partner is None:
+        return run_title(run, what)
+    parts = []
+    for curve in overlay_runs(run):
+        s = curve.run.summary
+        cells = f", {s['cells']} cells" if "cells" in s else ""
+        line = LINE_WORDS.get(curve.style.get("ls", ""), "points")
+        parts.append(f"{curve.label} ({line}{cells})")
+    t_end = run.summary.get("t_end")
+    when = f", t = {fmt_num(t_end)} s" if t_end is not None else ""
+    return f"{what}\n{run.problem}: " + " vs ".join(parts) + when
+
+
 # --------------------------------------------------------------------------
 # Formatting helpers
 # --------------------------------------------------------------------------
 
-def fmt_num(value, spec: str = ".3g") -> str:
+def fmt_num(value, spec: str = ".3g", missing: str = "?") -> str:
     """Format a number from JSON, tolerating absent or non-numeric values."""
     if isinstance(value, (int, float)) and not isinstance(value, bool):
         return format(value, spec)
-    return "?"
+    return missing
 
 
 def run_title(run: Run, what: str) -> str:
@@ -278,59 +488,77 @@ def plot_sod_profiles(run: Run, out_path: str) -> str:
 
 
 def plot_wilkins_profiles(run: Run, out_path: str) -> str:
-    """Flyer plate: density, velocity and sigma_xx along x (paper Fig. 3).
+    """Flyer plate: density, velocity and sigma_xx along x (paper Fig. 3),
+    lagrange solid and remap dashed when both runs are at hand.
 
-    Dashed lines mark the exact plastic state and elastic precursor levels of
-    the default impact, so the two-wave structure (precursor plateau ahead of
-    the plastic shock) can be judged by eye.
+    Thin horizontal lines mark the exact plastic state and elastic precursor
+    levels of the default impact, so the two-wave structure (precursor
+    plateau ahead of the plastic shock) can be judged by eye.
     """
-    name = "wilkins_profile.csv"
     fields = ["rho", "u", "sigma_xx"]
-    t = run.table(name, ["x"] + fields)
-    order = np.argsort(t["x"], kind="stable")
-    x = t["x"][order]
+    curves = curve_tables(run, "wilkins_profile.csv", ["x"] + fields)
     exact = {"rho": (2985.6, 2800.2), "u": (400.0, 35.2), "sigma_xx": (-6.637e9, -0.636e9)}
-    fig, axes = plt.subplots(3, 1, figsize=(9, 9), sharex=True)
+    fig, axes = plt.subplots(3, 1, figsize=(9, 9.5), sharex=True)
     for ax, field in zip(axes, fields):
-        ax.plot(x, t[field][order], "-o", ms=2, lw=0.8, color="tab:blue", label="lagrange")
         plastic, precursor = exact[field]
-        ax.axhline(plastic, ls="--", lw=0.8, color="black", label="exact plastic state")
-        ax.axhline(precursor, ls=":", lw=0.8, color="tab:red", label="exact elastic precursor")
+        ax.axhline(plastic, ls="-", lw=0.6, color="0.35", label="exact plastic state")
+        ax.axhline(precursor, ls="-.", lw=0.6, color="0.35", label="exact elastic precursor")
+        for curve, t in curves:
+            order = np.argsort(t["x"], kind="stable")
+            ax.plot(t["x"][order], t[field][order], lw=1.2, label=curve.label, **curve.style)
         ax.set_ylabel(LABELS[field])
         ax.grid(alpha=0.3)
     axes[0].legend(loc="best", fontsize="small")
     axes[-1].set_xlabel(LABELS["x"])
-    fig.suptitle(run_title(run, "Wilkins flyer plate"))
+    fig.suptitle(pair_title(run, "Wilkins flyer plate"))
     fig.tight_layout()
     return save(fig, out_path)
 
 
 def plot_pile_wall_stress(run: Run, out_path: str) -> str:
-    """Pile driving: wall sigma_xx against time with the exact square wave.
+    """Pile driving: wall sigma_xx against time with the exact square wave,
+    lagrange solid and remap dashed when both runs are at hand.
 
     The exact linear-elastic answer is 0 / twice the imposed stress / 0 on
     [0, L/c] / [L/c, 3L/c] / [3L/c, 4L/c]; overshoot at the fronts and the
     arrival time are what to look at.
     """
-    name = "pile_wall_stress.csv"
-    t = run.table(name, ["t", "sigma_xx", "exact"])
+    curves = curve_tables(run, "pile_wall_stress.csv", ["t", "sigma_xx", "exact"])
     fig, ax = plt.subplots(figsize=(9, 4.8))
-    ax.plot(t["t"], t["exact"], "-", color="black", lw=1.2, label="exact (linear elastic)")
-    ax.plot(t["t"], t["sigma_xx"], "-", color="tab:blue", lw=1.0, label="lagrange")
+    own = next(t for curve, t in curves if curve.run is run)
+    ax.plot(own["t"], own["exact"], "-", color="black", lw=0.8,
+            label="exact (linear elastic)")
+    for curve, t in curves:
+        ax.plot(t["t"], t["sigma_xx"], lw=1.2, label=curve.label, **curve.style)
     ax.set_xlabel(LABELS["t"])
     ax.set_ylabel("wall stress σ_xx [Pa]")
     ax.grid(alpha=0.3)
     ax.legend(loc="best", fontsize="small")
-    ax.set_title(run_title(run, "Pile driving: stress on the wall"))
+    ax.set_title(pair_title(run, "Pile driving: stress on the wall"))
     fig.tight_layout()
     return save(fig, out_path)
 
 
+def paper_number(runs: List[Run], check: str, mode: str) -> Optional[float]:
+    """The paper's number for `check` in `mode`: the `paper` field of that
+    mode's run, or the `lagrange_reference` a remap run records."""
+    for r in runs:
+        c = r.check(check) or {}
+        if r.mode == mode and isinstance(c.get("paper"), (int, float)):
+            return float(c["paper"])
+    if mode == "lagrange":
+        for r in runs:
+            c = r.check(check) or {}
+            if r.mode == "remap" and isinstance(c.get("lagrange_reference"), (int, float)):
+                return float(c["lagrange_reference"])
+    return None
+
+
 def plot_taylor(run: Run, out_path: str) -> str:
-    """Taylor impact: the deformed bar (cells coloured by density, the
-    mushroom at the wall) and the bar length against time with the paper's
-    final length."""
-    mesh_name, length_name = "taylor_mesh_z0.csv", "taylor_length.csv"
+    """Taylor impact: this run's cells coloured by density at t_end (the
+    mushroom at the wall) and the bar length against time, lagrange solid and
+    remap dashed, with the paper's final lengths."""
+    mesh_name = "taylor_mesh_z0.csv"
     cells = run.table(mesh_name, CORNER_COLUMNS + ["density"])
     polys = slice_polygons(cells, run.path(mesh_name))
     fig, (ax_bar, ax_len) = plt.subplots(1, 2, figsize=(13, 4.8),
@@ -341,75 +569,185 @@ def plot_taylor(run: Run, out_path: str) -> str:
     ax_bar.set_aspect("equal")
     ax_bar.set_xlabel(LABELS["x"])
     ax_bar.set_ylabel(LABELS["y"])
-    ax_bar.set_title("Deformed bar at t_end" if run.summary.get("mode") != "remap"
+    ax_bar.set_title("Deformed bar at t_end" if run.mode != "remap"
                      else "Density on the fixed mesh at t_end (bar in gas)")
-    history = run.table(length_name, ["t", "length"])
-    mode = run.summary.get("mode", "lagrange")
-    remap = mode == "remap"
-    ax_len.plot(history["t"], history["length"], "--" if remap else "-", color="tab:blue",
-                label=mode + (" (aluminium volume along the axis)" if remap else ""))
-    reference = run.check("final_length")
-    if reference and isinstance(reference.get("reference"), (int, float)):
-        ax_len.axhline(reference["reference"], ls=":", color="black",
-                       label=f"paper ({mode}) {reference['reference']:g} m")
+    curves = curve_tables(run, "taylor_length.csv", ["t", "length"])
+    for curve, history in curves:
+        how = ("aluminium volume along the axis" if curve.run.mode == "remap"
+               else "largest node x")
+        ax_len.plot(history["t"], history["length"], lw=1.2,
+                    label=f"{curve.label} ({how})", **curve.style)
+        final = curve.run.check("final_length")
+        if final and isinstance(final.get("value"), (int, float)):
+            how = "α = 0.5 on the axis" if curve.run.mode == "remap" else "final"
+            ax_len.plot([history["t"][-1]], [final["value"]], "o", mfc="none",
+                        color=curve.style["color"],
+                        label=f"{curve.label} {how}: {final['value']:.3f} m")
+    runs = [curve.run for curve, _ in curves]
+    for mode, ls in (("lagrange", "-"), ("remap", "--")):
+        paper = paper_number(runs, "final_length", mode)
+        if paper is not None:
+            ax_len.axhline(paper, ls=ls, lw=0.6, color="black",
+                           label=f"paper ({mode}) {paper:g} m")
     ax_len.set_xlabel(LABELS["t"])
     ax_len.set_ylabel("bar length [m]")
     ax_len.grid(alpha=0.3)
     ax_len.legend(loc="best", fontsize="small")
-    fig.suptitle(run_title(run, "Taylor impact"))
+    fig.suptitle(pair_title(run, "Taylor impact"))
     fig.tight_layout()
     return save(fig, out_path)
 
 
+def plot_taylor_outline(run: Run, out_path: str) -> str:
+    """Taylor impact, the paper's Fig. 6: the bar's outline at t_end, the
+    deformed Lagrangian mesh's boundary (solid) over the alpha = 0.5 contour
+    of aluminium on the fixed remap mesh (dashed), with the initial bar."""
+    fig, ax = plt.subplots(figsize=(11, 5))
+    handles = []
+    frame = []  # points the view must hold
+    initial_drawn = False
+    for curve in overlay_runs(run):
+        r = curve.run
+        snaps = r.snapshots()
+        if not snaps:
+            note(f"{r.dir}: no HDF5 snapshots; the outline has no {curve.label} curve")
+            continue
+        final = snaps[-1]
+        final_length = (r.check("final_length") or {}).get("value")
+        length = f", L = {final_length:.3f} m" if isinstance(final_length, (int, float)) else ""
+        if final.n_materials > 1:
+            materials = r.solid_materials(final)
+            for k in materials:
+                draw_alpha_contour(ax, final, k, colors=curve.style["color"],
+                                   linestyles=curve.style["ls"], linewidths=1.4)
+            handles.append(Line2D([], [], lw=1.4, **curve.style,
+                                  label=f"{curve.label}: α = 0.5 of aluminium{length}"))
+            if not initial_drawn and snaps[0] is not final:
+                for k in materials:
+                    draw_alpha_contour(ax, snaps[0], k, colors="0.55",
+                                       linestyles=":", linewidths=0.9)
+                frame.append(snaps[0].solid_extent(materials))
+                initial_drawn = True
+        else:
+            segments = final.outline_segments()
+            ax.add_collection(LineCollection(segments, colors=curve.style["color"],
+                                             linestyles=curve.style["ls"], linewidths=1.4))
+            handles.append(Line2D([], [], lw=1.4, **curve.style,
+                                  label=f"{curve.label}: boundary of the deformed mesh{length}"))
+            if snaps[0] is not final:
+                initial = snaps[0].outline_segments()
+                ax.add_collection(LineCollection(initial, colors="0.55",
+                                                 linestyles=":", linewidths=0.9))
+                frame.append(initial.reshape(-1, 2))
+                initial_drawn = True
+            frame.append(segments.reshape(-1, 2))
+        frame.append(final.layer_polygons().reshape(-1, 2) if final.n_materials == 1
+                     else final.solid_extent(r.solid_materials(final)))
+    if not handles:
+        raise InputError("no run of the pair has HDF5 snapshots")
+    if initial_drawn:
+        handles.append(Line2D([], [], ls=":", color="0.55", lw=0.9, label="initial bar"))
+    points = np.concatenate([f for f in frame if f is not None and len(f)])
+    lo, hi = points.min(axis=0), points.max(axis=0)
+    pad = 0.04 * float((hi - lo).max())
+    ax.set_xlim(lo[0] - pad, hi[0] + pad)
+    ax.set_ylim(lo[1] - pad, hi[1] + pad)
+    ax.set_aspect("equal")
+    ax.set_xlabel(LABELS["x"])
+    ax.set_ylabel(LABELS["y"])
+    ax.grid(alpha=0.3)
+    ax.legend(handles=handles, loc="upper right", fontsize="small")
+    ax.set_title(pair_title(run, "Taylor impact, outline at t_end"))
+    fig.tight_layout()
+    return save(fig, out_path)
+
+
+# Colours of the shell's radii, one per CSV column (any other column gets a
+# spare colour), the line style says the mode.
+SHELL_RADIUS_COLOURS = {
+    "inner_radius": "tab:blue",
+    "outer_radius_incompressible": "tab:orange",
+    "outer_radius_be_area": "tab:green",
+    "outer_radius": "tab:green",
+}
+SHELL_RADIUS_WORDS = {
+    "inner_radius": "inner",
+    "outer_radius_incompressible": "outer (shell area conserved)",
+    "outer_radius_be_area": "outer (from the Be area)",
+    "outer_radius": "outer",
+}
+
+
 def plot_shell(run: Run, out_path: str) -> str:
-    """Shell collapse: the deformed quarter shell coloured by density, and the
-    inner and outer radii against time with Howell & Ball's stopping radii."""
-    mesh_name, radii_name = "shell_mesh_z0.csv", "shell_radii.csv"
+    """Shell collapse: this run's cells coloured by density at t_end, and the
+    inner and outer radii against time (lagrange solid, remap dashed) with
+    Howell & Ball's stopping radii and the paper's."""
+    mesh_name = "shell_mesh_z0.csv"
     cells = run.table(mesh_name, CORNER_COLUMNS + ["density"])
     polys = slice_polygons(cells, run.path(mesh_name))
-    fig, (ax_mesh, ax_r) = plt.subplots(1, 2, figsize=(12, 5))
+    # Constrained layout: the square map's title would meet the suptitle.
+    fig, (ax_mesh, ax_r) = plt.subplots(1, 2, figsize=(13, 6.4), constrained_layout=True)
     art = draw_cells(ax_mesh, polys, cells["density"])
     fig.colorbar(art, ax=ax_mesh, label=LABELS["rho"], shrink=0.85)
     ax_mesh.autoscale_view()
     ax_mesh.set_aspect("equal")
     ax_mesh.set_xlabel(LABELS["x"])
     ax_mesh.set_ylabel(LABELS["y"])
-    ax_mesh.set_title("Shell at t_end")
-    radii = run.table(radii_name, ["t", "inner_radius", "outer_radius_incompressible"])
-    ax_r.plot(radii["t"], radii["inner_radius"], "-", color="tab:blue", label="inner radius")
-    ax_r.plot(radii["t"], radii["outer_radius_incompressible"], "-", color="tab:orange",
-              label="outer radius (shell area conserved)")
+    ax_mesh.set_title("Shell at t_end" if run.mode != "remap"
+                      else "Density on the fixed mesh at t_end (shell in gas)")
+    spare = iter(SPARE_COLOURS * 4)
+    colours = dict(SHELL_RADIUS_COLOURS)
+    for curve, radii in curve_tables(run, "shell_radii.csv", ["t"]):
+        for column in radii:
+            if column == "t" or "radius" not in column or radii[column].dtype.kind != "f":
+                continue
+            colour = colours.setdefault(column, next(spare))
+            ax_r.plot(radii["t"], radii[column], ls=curve.style["ls"], color=colour, lw=1.2,
+                      label=f"{curve.label}: {SHELL_RADIUS_WORDS.get(column, column)}")
+    runs = [run] + ([run.partner] if run.partner is not None else [])
     for name, colour in (("stopping_inner_radius", "tab:blue"),
                          ("stopping_outer_radius", "tab:orange")):
-        check = run.check(name)
+        check = next((r.check(name) for r in runs if r.check(name)), None)
         if check and isinstance(check.get("reference"), (int, float)):
-            ax_r.axhline(check["reference"], ls="--", color=colour, lw=0.8,
+            ax_r.axhline(check["reference"], ls="-.", color=colour, lw=0.7,
                          label=f"Howell & Ball {1000 * check['reference']:.1f} mm")
+        paper = paper_number(runs, name, "remap")
+        if paper is not None:
+            ax_r.axhline(paper, ls=(0, (1, 3)), color=colour, lw=0.9,
+                         label=f"paper (remap) {1000 * paper:.0f} mm")
     ax_r.set_xlabel(LABELS["t"])
     ax_r.set_ylabel("radius [m]")
     ax_r.grid(alpha=0.3)
-    ax_r.legend(loc="best", fontsize="small")
-    fig.suptitle(run_title(run, "Beryllium shell collapse"))
-    fig.tight_layout()
+    # Below the axes: the radii curves fill the panel.
+    ax_r.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2, fontsize="small")
+    fig.suptitle(pair_title(run, "Beryllium shell collapse"))
     return save(fig, out_path)
 
 
 def plot_beam_tip(run: Run, out_path: str) -> str:
     """Oscillating plate: vertical tip displacement against time (paper
-    Fig. 12), with the theoretical half period marked."""
-    t = run.table("beam_tip.csv", ["t", "tip_displacement_y"])
+    Fig. 12), the lagrange run a curve and the remap run points, with the
+    theoretical half period marked."""
+    curves = curve_tables(run, "beam_tip.csv", ["t", "tip_displacement_y"])
     fig, ax = plt.subplots(figsize=(9, 4.8))
-    ax.plot(t["t"], t["tip_displacement_y"], "-", color="tab:blue", label="lagrange")
     ax.axhline(0.0, color="0.5", lw=0.6)
+    for curve, t in curves:
+        if curve.run.mode == "remap":
+            # Points, as the paper: about 40 of them over the run.
+            every = max(1, len(t["t"]) // 40)
+            ax.plot(t["t"][::every], t["tip_displacement_y"][::every], "o", ms=4,
+                    mfc="none", color=curve.style["color"], label=f"{curve.label} (points)")
+        else:
+            ax.plot(t["t"], t["tip_displacement_y"], lw=1.2, label=curve.label, **curve.style)
     check = run.check("half_period")
     if check and isinstance(check.get("reference"), (int, float)):
-        ax.axvline(check["reference"], ls="--", color="black", lw=0.8,
-                   label=f"half period (Timoshenko) {1e6 * check['reference']:.2f} us")
+        ax.axvline(check["reference"], ls="-.", color="black", lw=0.8,
+                   label=f"half period (Timoshenko) {1e6 * check['reference']:.2f} µs")
     ax.set_xlabel(LABELS["t"])
     ax.set_ylabel("tip displacement y [m]")
     ax.grid(alpha=0.3)
     ax.legend(loc="best", fontsize="small")
-    ax.set_title(run_title(run, "Oscillating plate: tip displacement"))
+    ax.set_title(pair_title(run, "Oscillating plate: tip displacement"))
     fig.tight_layout()
     return save(fig, out_path)
 
@@ -538,7 +876,8 @@ def slice_polygons(table: Dict[str, np.ndarray], path: str) -> Optional[np.ndarr
                      for k in range(4)], axis=1)
 
 
-def draw_cells(ax, polys: np.ndarray, values: np.ndarray) -> PolyCollection:
+def draw_cells(ax, polys: np.ndarray, values: np.ndarray, cmap: str = "viridis",
+               limits: Optional[Tuple[float, float]] = None) -> PolyCollection:
     """Fill each cell quadrilateral with its (cell-constant) value.
 
     This shows the data exactly as the scheme holds it: no interpolation
@@ -560,10 +899,12 @@ def draw_cells(ax, polys: np.ndarray, values: np.ndarray) -> PolyCollection:
     finite = values[np.isfinite(values)]
     fill = None
     for antialiased in (False, True):
-        layer = PolyCollection(polys, array=values, cmap="viridis",
+        layer = PolyCollection(polys, array=values, cmap=cmap,
                                closed=True, edgecolors="none", linewidths=0.0,
                                antialiaseds=antialiased, snap=False)
-        if finite.size:
+        if limits is not None:
+            layer.set_clim(*limits)
+        elif finite.size:
             layer.set_clim(finite.min(), finite.max())
         ax.add_collection(layer)
         fill = fill or layer
@@ -716,15 +1057,400 @@ def plot_history(run: Run, out_path: str) -> str:
 
 
 # --------------------------------------------------------------------------
+# HDF5 snapshots (fields.xmf + fields_NNNNN.h5, src/io/snapshot_writer.hpp)
+# --------------------------------------------------------------------------
+
+def import_h5py():
+    """h5py, or None: the maps are skipped with a note when it is missing."""
+    try:
+        import h5py  # noqa: F401  (Debian: python3-h5py)
+    except ImportError:
+        return None
+    return h5py
+
+
+def list_snapshots(directory: str, shape: Tuple[Optional[int], Optional[int]]) -> List["Snapshot"]:
+    """The snapshots of fields.xmf in time order.
+
+    The series file is the authority: a new run rewrites the series from
+    index 0, so fields_*.h5 files of an older, longer run in the same
+    directory may remain and must not be taken.  Without fields.xmf the
+    .h5 files are taken in name order.
+    """
+    series = os.path.join(directory, "fields.xmf")
+    entries: List[Tuple[float, str]] = []
+    if os.path.isfile(series):
+        try:
+            root = ET.parse(series).getroot()
+        except ET.ParseError as exc:
+            raise InputError(f"fields.xmf: not XML ({exc})")
+        for grid in root.iter("Grid"):
+            if grid.get("GridType") != "Uniform":
+                continue
+            time = grid.find("Time")
+            item = grid.find("Topology/DataItem")
+            if time is None or item is None or not item.text:
+                continue
+            name = item.text.strip().split(":")[0]
+            entries.append((float(time.get("Value", "nan")), os.path.join(directory, name)))
+    else:
+        for path in sorted(glob.glob(os.path.join(directory, "fields_[0-9]*.h5"))):
+            entries.append((math.nan, path))
+    return [Snapshot(path, time, shape) for time, path in entries if os.path.isfile(path)]
+
+
+class Snapshot:
+    """One HDF5 snapshot: mesh, fields read on demand, and the cell layer
+    the maps show (the one nearest the mid-plane in z).  `shape` is the
+    run's (mesh.nx, mesh.ny), which lets a block mesh's layer be read as a
+    grid."""
+
+    def __init__(self, path: str, time: float, shape: Tuple[Optional[int], Optional[int]]):
+        self.path = path
+        self.time = time
+        self.shape = shape
+        self._fields: Dict[str, np.ndarray] = {}
+        self._names: Optional[List[str]] = None
+        self._coords: Optional[np.ndarray] = None
+        self._cells: Optional[np.ndarray] = None
+        self._layer: Optional[np.ndarray] = None
+
+    def _read_mesh(self) -> None:
+        h5py = import_h5py()
+        if h5py is None:
+            raise SkipPlot("python3-h5py is not installed: no HDF5 snapshot can be read")
+        try:
+            with h5py.File(self.path, "r") as f:
+                self._coords = np.asarray(f["mesh/coordinates"][...], dtype=float)
+                self._cells = np.asarray(f["mesh/connectivity"][...], dtype=np.int64)
+                self._names = list(f["fields"].keys()) if "fields" in f else []
+                if math.isnan(self.time) and "time" in f.attrs:
+                    self.time = float(f.attrs["time"])
+        except (OSError, KeyError) as exc:
+            raise InputError(f"{os.path.basename(self.path)}: {exc}")
+        if self._cells.ndim != 2 or self._cells.shape[1] != 8 or \
+                self._coords.ndim != 2 or self._coords.shape[1] != 3:
+            raise InputError(f"{os.path.basename(self.path)}: mesh is not 8-node hexahedra in 3D")
+
+    @property
+    def coords(self) -> np.ndarray:
+        if self._coords is None:
+            self._read_mesh()
+        return self._coords
+
+    @property
+    def cells(self) -> np.ndarray:
+        if self._cells is None:
+            self._read_mesh()
+        return self._cells
+
+    def has(self, name: str) -> bool:
+        if self._names is None:
+            self._read_mesh()
+        return name in self._names
+
+    def field(self, name: str) -> np.ndarray:
+        """A cell field, e.g. density, pressure, volume_fraction_0."""
+        if name not in self._fields:
+            if not self.has(name):
+                raise SkipPlot(f"{os.path.basename(self.path)} has no field '{name}'")
+            with import_h5py().File(self.path, "r") as f:
+                self._fields[name] = np.asarray(f["fields/" + name][...], dtype=float)
+        return self._fields[name]
+
+    @property
+    def n_materials(self) -> int:
+        """Materials with a volume fraction (1 for a single-material run,
+        whose snapshots hold none)."""
+        k = 0
+        while self.has(f"volume_fraction_{k}"):
+            k += 1
+        return max(k, 1)
+
+    def layer(self) -> np.ndarray:
+        """Indices of the cells of the layer nearest the mesh's mid-plane in z
+        (the only layer of a slab one cell thick), in cell order."""
+        if self._layer is None:
+            z = self.coords[self.cells][:, :, 2]
+            z_c = z.mean(axis=1)
+            z_mid = 0.5 * (self.coords[:, 2].min() + self.coords[:, 2].max())
+            target = z_c[np.argmin(np.abs(z_c - z_mid))]
+            thickness = np.median(np.abs(z[:, 4:].mean(axis=1) - z[:, :4].mean(axis=1)))
+            self._layer = np.nonzero(np.abs(z_c - target) <= 0.25 * thickness)[0]
+        return self._layer
+
+    def layer_polygons(self) -> np.ndarray:
+        """(n, 4, 2): the x-y corners of the layer's cells (their z-min face,
+        VTK nodes 0-3 in order around it)."""
+        return self.coords[self.cells[self.layer(), :4], :2]
+
+    def outline_segments(self) -> np.ndarray:
+        """(m, 2, 2): the layer's boundary edges, those of one cell only."""
+        faces = self.cells[self.layer(), :4]
+        edges = np.stack([faces, np.roll(faces, -1, axis=1)], axis=2).reshape(-1, 2)
+        keys = np.sort(edges, axis=1)
+        _, first, counts = np.unique(keys, axis=0, return_index=True, return_counts=True)
+        boundary = edges[first[counts == 1]]
+        return self.coords[boundary][:, :, :2]
+
+    def grid(self) -> Optional[np.ndarray]:
+        """The layer's cells as an (ny, nx) array of cell indices when they
+        form a structured block (cell (j, i + 1) shares the edge 1-2 of cell
+        (j, i), cell (j + 1, i) the edge 3-2), else None."""
+        cells = self.layer()
+        nx, ny = self.shape
+        if not nx or not ny or len(cells) != nx * ny:
+            return None
+        block = cells.reshape(ny, nx)
+        nodes = self.cells[block]  # (ny, nx, 8)
+        if nx > 1 and not (np.array_equal(nodes[:, 1:, 0], nodes[:, :-1, 1]) and
+                           np.array_equal(nodes[:, 1:, 3], nodes[:, :-1, 2])):
+            return None
+        if ny > 1 and not (np.array_equal(nodes[1:, :, 0], nodes[:-1, :, 3]) and
+                           np.array_equal(nodes[1:, :, 1], nodes[:-1, :, 2])):
+            return None
+        return block
+
+    def solid_extent(self, materials: List[int]) -> Optional[np.ndarray]:
+        """x-y corners of the layer's cells holding more than half of one of
+        `materials` (what a view of the solids must show)."""
+        layer = self.layer()
+        keep = np.zeros(len(layer), dtype=bool)
+        for k in materials:
+            keep |= self.field(f"volume_fraction_{k}")[layer] > 0.5
+        return self.layer_polygons()[keep].reshape(-1, 2) if keep.any() else None
+
+
+def padded_grid(snapshot: Snapshot, block: np.ndarray, values: np.ndarray) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Centre-of-face points of a structured layer, one ring wider: the
+    boundary faces' midpoints (and corner nodes) carry the boundary cell's
+    value, the mirror ghost of a wall, so a contour reaches the boundary
+    instead of stopping half a cell short."""
+    p = snapshot.coords[:, :2]
+    q = [p[snapshot.cells[block, n]] for n in range(4)]  # (ny, nx, 2) each
+    ny, nx = block.shape
+    g = np.empty((ny + 2, nx + 2, 2))
+    g[1:-1, 1:-1] = 0.25 * (q[0] + q[1] + q[2] + q[3])
+    g[1:-1, 0] = 0.5 * (q[0] + q[3])[:, 0]
+    g[1:-1, -1] = 0.5 * (q[1] + q[2])[:, -1]
+    g[0, 1:-1] = 0.5 * (q[0] + q[1])[0, :]
+    g[-1, 1:-1] = 0.5 * (q[3] + q[2])[-1, :]
+    g[0, 0], g[0, -1] = q[0][0, 0], q[1][0, -1]
+    g[-1, 0], g[-1, -1] = q[3][-1, 0], q[2][-1, -1]
+    v = np.pad(values[block], 1, mode="edge")
+    return g[..., 0], g[..., 1], v
+
+
+def draw_alpha_contour(ax, snapshot: Snapshot, material: int, **style) -> None:
+    """The alpha = 0.5 contour of `material` on the snapshot's layer.
+
+    On a structured layer (every remap mesh, and the lagrange block meshes)
+    the contour is drawn on the grid of cell centres padded to the
+    boundary; otherwise on a triangulation of the cell centres."""
+    alpha = snapshot.field(f"volume_fraction_{material}")
+    layer = snapshot.layer()
+    if not ((alpha[layer] > 0.5).any() and (alpha[layer] < 0.5).any()):
+        return  # no interface in this layer
+    effects = style.pop("path_effects", None)
+    block = snapshot.grid()
+    if block is not None:
+        x, y, v = padded_grid(snapshot, block, alpha)
+        contours = ax.contour(x, y, v, levels=[0.5], **style)
+    else:
+        centres = snapshot.layer_polygons().mean(axis=1)
+        tri = triangulate_points(centres[:, 0], centres[:, 1])
+        contours = ax.tricontour(tri, alpha[layer], levels=[0.5], **style)
+    if effects:
+        for line in contours.collections:
+            line.set_path_effects(effects)
+
+
+# Colours of the alpha = 0.5 contours on the field maps, one per solid.
+CONTOUR_COLOURS = ["white", "magenta", "cyan", "yellow"]
+
+
+def maps_apply(run: Run) -> bool:
+    """Field maps are drawn for 2D runs (a slab one cell thick, at least
+    4 x 4 cells), for multi-material runs (their interfaces are the point)
+    and for the beam (the paper shows its fields); not for 1D bars or 3D
+    blocks, whose slice says little."""
+    if run.problem == "beam" or isinstance(run.summary.get("interfaces"), dict):
+        return True
+    nx, ny, nz = (run.config_int(f"mesh.n{a}") for a in "xyz")
+    return nz == 1 and bool(nx) and bool(ny) and min(nx, ny) >= 4
+
+
+def final_snapshot(run: Run) -> Snapshot:
+    snaps = run.snapshots()
+    if not snaps:
+        raise SkipPlot(f"{run.dir}: fields.xmf lists no snapshot file")
+    return snaps[-1]
+
+
+def draw_field_map(fig, ax, run: Run, snap: Snapshot, field: str,
+                   limits: Optional[Tuple[float, float]] = None, colorbar: bool = True):
+    """One field of a snapshot's layer, cell by cell, with the alpha = 0.5
+    contour of each solid material on top; returns the legend handles."""
+    polys = snap.layer_polygons()
+    values = snap.field(field)[snap.layer()]
+    cmap = "viridis"
+    if field == "pressure":
+        # Compression and tension on either side of white (zero pressure).
+        top = max(abs(v) for v in limits) if limits else float(np.nanmax(np.abs(values)))
+        cmap, limits = "RdBu_r", (-top, top)
+    art = draw_cells(ax, polys, values, cmap=cmap, limits=limits)
+    if colorbar:
+        fig.colorbar(art, ax=ax, label=LABELS["rho" if field == "density" else "p"], shrink=0.9)
+    handles = []
+    if snap.n_materials > 1:
+        for i, k in enumerate(run.solid_materials(snap)):
+            colour = CONTOUR_COLOURS[i % len(CONTOUR_COLOURS)]
+            # A dark edge keeps a light line visible on light cells (the
+            # solid's density, the gas's near-zero pressure).
+            halo = [patheffects.withStroke(linewidth=2.6, foreground="black")]
+            draw_alpha_contour(ax, snap, k, colors=colour, linewidths=1.2, path_effects=halo)
+            handles.append(Line2D([], [], color=colour, lw=1.2, path_effects=halo,
+                                  label=f"α = 0.5, material {k} (solid)"))
+    lo, hi = polys.reshape(-1, 2).min(axis=0), polys.reshape(-1, 2).max(axis=0)
+    pad = 0.02 * max(float((hi - lo).max()), 1e-300)
+    ax.set_xlim(lo[0] - pad, hi[0] + pad)
+    ax.set_ylim(lo[1] - pad, hi[1] + pad)
+    ax.set_aspect("equal")
+    ax.set_xlabel(LABELS["x"])
+    ax.set_ylabel(LABELS["y"])
+    return handles
+
+
+def snapshot_words(run: Run, snap: Snapshot) -> str:
+    """'Fields at t_end' for the final state (the title's run line gives
+    t_end), else the snapshot's time."""
+    t_end = run.summary.get("t_end")
+    if isinstance(t_end, (int, float)) and abs(snap.time - t_end) <= 1e-9 * abs(t_end):
+        return "Fields at t_end"
+    return f"Fields at t = {fmt_num(snap.time)} s"
+
+
+def layer_words(snap: Snapshot) -> str:
+    z = snap.coords[snap.cells[snap.layer()]][:, :, 2].mean()
+    thick = snap.coords[:, 2].max() - snap.coords[:, 2].min()
+    layers = len(snap.cells) // max(len(snap.layer()), 1)
+    return "" if layers <= 1 else f", cell layer at z = {z:.3g} m of {thick:.3g} m"
+
+
+def plot_field_maps(run: Run, out_path: str) -> str:
+    """Density and pressure of the final state on the cells of one layer
+    (the slab of a 2D run), with each solid's alpha = 0.5 contour: the
+    paper's field figures."""
+    snap = final_snapshot(run)
+    polys = snap.layer_polygons()
+    extent = polys.reshape(-1, 2).max(axis=0) - polys.reshape(-1, 2).min(axis=0)
+    wide = extent[0] > 1.5 * extent[1]
+    # Wide domains stacked, each map about 8 inches wide plus its colour bar.
+    aspect = float(extent[0] / max(extent[1], 1e-300))
+    fig, axes = plt.subplots(2 if wide else 1, 1 if wide else 2,
+                             figsize=(11, min(8.5, 2.0 + 16.0 / aspect)) if wide else (13, 5.6))
+    handles = []
+    for ax, field in zip(axes, ("density", "pressure")):
+        handles = draw_field_map(fig, ax, run, snap, field) or handles
+        ax.set_title(("Density" if field == "density" else "Pressure")
+                     + (" (mixture)" if snap.n_materials > 1 else ""))
+    if handles:
+        axes[0].legend(handles=handles, loc="upper right", fontsize="small", framealpha=0.8)
+    fig.suptitle(run_title(run, snapshot_words(run, snap)) + layer_words(snap))
+    fig.tight_layout()
+    return save(fig, out_path)
+
+
+def plot_density_snapshots(run: Run, out_path: str) -> Optional[str]:
+    """Density at the run's snapshot times (initial, requested, final; at most
+    six, evenly picked), one colour scale, solid contours on top: the paper's
+    time series (ball Fig. 14, beam).  Not drawn for two snapshots or fewer
+    (initial and final only: fields_map.png shows the final one)."""
+    snaps = run.snapshots()
+    if len(snaps) < 3:
+        return None
+    picks = sorted(set(np.linspace(0, len(snaps) - 1, min(6, len(snaps))).round().astype(int)))
+    chosen = [snaps[i] for i in picks]
+    values = np.concatenate([s.field("density")[s.layer()] for s in chosen])
+    limits = (float(np.nanmin(values)), float(np.nanmax(values)))
+    cols = min(3, len(chosen))
+    rows = (len(chosen) + cols - 1) // cols
+    fig, axes = plt.subplots(rows, cols, figsize=(5 * cols, 4.2 * rows), squeeze=False,
+                             constrained_layout=True)
+    handles = []
+    mappable = None
+    for ax, snap in zip(axes.flat, chosen):
+        handles = draw_field_map(fig, ax, run, snap, "density", limits, colorbar=False) or handles
+        mappable = mappable or ax.collections[0]
+        ax.set_title(f"t = {fmt_num(snap.time)} s")
+    for ax in list(axes.flat)[len(chosen):]:
+        ax.set_visible(False)
+    fig.colorbar(mappable, ax=[a for a in axes.flat if a.get_visible()],
+                 label=LABELS["rho"], shrink=0.9)
+    if handles:
+        axes.flat[0].legend(handles=handles, loc="upper right", fontsize="small", framealpha=0.8)
+    fig.suptitle(run_title(run, "Density at the snapshot times") + layer_words(chosen[-1]))
+    return save(fig, out_path)
+
+
+# --------------------------------------------------------------------------
+# Comparison table
+# --------------------------------------------------------------------------
+
+def comparison_rows(run: Run) -> List[List[str]]:
+    """One row per check of the remap run: its value and reference, the
+    lagrange run's value, the lagrange reference and the paper's number."""
+    curves = {c.run.mode: c.run for c in overlay_runs(run)}
+    remap, lagrange = curves.get("remap"), curves.get("lagrange")
+    if remap is None or lagrange is None:
+        return []
+    rows = []
+    for name, check in (remap.summary.get("checks") or {}).items():
+        if not isinstance(check, dict):
+            continue
+        ours = lagrange.check(name) or {}
+        numbers = (check.get("value"), check.get("reference"), ours.get("value"),
+                   check.get("lagrange_reference"), check.get("paper"))
+        verdict = {True: "pass", False: "FAIL"}.get(check.get("pass"), "?")
+        rows.append([name] + [fmt_num(v, ".5g", "–") for v in numbers] + [verdict])
+    return rows
+
+
+def write_comparison(run: Run, out_dir: str) -> Optional[str]:
+    """comparison.md: the remap checks next to the lagrange run's (a
+    Markdown table; '–' where a run or the paper gives no number)."""
+    rows = comparison_rows(run)
+    if not rows:
+        return None
+    header = ["check", "remap", "remap reference", "lagrange (this pair)",
+              "lagrange reference", "paper", "remap check"]
+    lines = [f"{run.problem}: remap {run.summary.get('cells', '?')} cells vs lagrange "
+             f"{run.partner.summary.get('cells', '?')} cells, t = {fmt_num(run.summary.get('t_end'))} s",
+             "", "| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    lines += ["| " + " | ".join(row) + " |" for row in rows]
+    os.makedirs(out_dir, exist_ok=True)
+    path = os.path.join(out_dir, "comparison.md")
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    return path
+
+
+# --------------------------------------------------------------------------
 # Dispatch
 # --------------------------------------------------------------------------
 
+def always(run: Run) -> bool:
+    return True
+
+
 @dataclass(frozen=True)
 class Plot:
-    """One output figure: its file name, the input it needs, how to draw it."""
+    """One output figure: its file name, the input it needs, how to draw it,
+    and whether it applies to a run (checked before its input is read)."""
     output: str
     source: str
-    draw: Callable[[Run, str], str]
+    draw: Callable[[Run, str], Optional[str]]
+    applies: Callable[[Run], bool] = always
 
 
 # Plots that only make sense for one problem, keyed by summary["problem"].
@@ -732,7 +1458,8 @@ PROBLEM_PLOTS: Dict[str, List[Plot]] = {
     "sod": [Plot("sod_profiles.png", "sod_profile.csv", plot_sod_profiles)],
     "wilkins": [Plot("wilkins_profiles.png", "wilkins_profile.csv", plot_wilkins_profiles)],
     "pile": [Plot("pile_wall_stress.png", "pile_wall_stress.csv", plot_pile_wall_stress)],
-    "taylor": [Plot("taylor.png", "taylor_mesh_z0.csv", plot_taylor)],
+    "taylor": [Plot("taylor.png", "taylor_mesh_z0.csv", plot_taylor),
+               Plot("taylor_outline.png", "fields.xmf", plot_taylor_outline)],
     "shell": [Plot("shell.png", "shell_mesh_z0.csv", plot_shell)],
     "beam": [Plot("beam_tip.png", "beam_tip.csv", plot_beam_tip)],
 }
@@ -745,14 +1472,15 @@ GENERIC_PLOTS: List[Plot] = [
     Plot("radial_density.png", "radial.csv", partial(plot_radial, field="rho")),
     Plot("radial_pressure.png", "radial.csv", partial(plot_radial, field="p")),
     Plot("slice_fields.png", "slice_z.csv", plot_slice_fields),
+    Plot("fields_map.png", "fields.xmf", plot_field_maps, maps_apply),
+    Plot("density_snapshots.png", "fields.xmf", plot_density_snapshots, maps_apply),
     Plot("history.png", "history.csv", plot_history),
 ]
 
 
 def plots_for(run: Run) -> List[Plot]:
     """The candidate plots for this run: problem-specific first, then generic."""
-    problem = str(run.summary.get("problem", ""))
-    return PROBLEM_PLOTS.get(problem, []) + GENERIC_PLOTS
+    return PROBLEM_PLOTS.get(run.problem, []) + GENERIC_PLOTS
 
 
 def main(argv: Optional[List[str]] = None) -> int:
@@ -762,6 +1490,12 @@ def main(argv: Optional[List[str]] = None) -> int:
     parser.add_argument("dir", metavar="DIR", help="lagremap output directory")
     parser.add_argument("--out", metavar="OUTDIR",
                         help="write PNGs here instead of DIR (created if needed)")
+    parser.add_argument("--compare", metavar="LAGRANGE_DIR",
+                        help="a run of the same problem (normally in lagrange mode) to "
+                             "overlay: lagrange solid, remap dashed.  Default for a remap "
+                             "run: DIR_lagrange or PROBLEM_lagrange next to DIR, if present")
+    parser.add_argument("--no-compare", action="store_true",
+                        help="draw DIR's run alone (no search for a lagrange run)")
     parser.add_argument("--show-list", action="store_true",
                         help="list the plots for DIR (output, input, whether "
                              "the input is present) and draw nothing")
@@ -773,11 +1507,14 @@ def main(argv: Optional[List[str]] = None) -> int:
 
     if args.show_list:
         for plot in candidates:
-            state = "available" if run.has(plot.source) else "missing-input"
+            state = ("not-applicable" if not plot.applies(run)
+                     else "available" if run.has(plot.source) else "missing-input")
             print(f"{os.path.join(out_dir, plot.output)}\t{plot.source}\t{state}")
         return 0
 
-    todo = [p for p in candidates if run.has(p.source)]
+    if not args.no_compare:
+        run.partner = find_partner(run, args.compare, auto=True)
+    todo = [p for p in candidates if run.has(p.source) and p.applies(run)]
     if todo:
         try:
             os.makedirs(out_dir, exist_ok=True)
@@ -788,13 +1525,27 @@ def main(argv: Optional[List[str]] = None) -> int:
     for plot in todo:
         try:
             written = plot.draw(run, os.path.join(out_dir, plot.output))
+        except SkipPlot as exc:
+            plt.close("all")
+            note(f"{plot.output} skipped: {exc}")
+            continue
         except (InputError, OSError, ValueError) as exc:
             plt.close("all")
             print(f"plot.py: warning: {plot.output} skipped: {exc}",
                   file=sys.stderr)
             status = EXIT_PLOT_FAILED
             continue
-        print(written, flush=True)
+        if written:
+            print(written, flush=True)
+    if run.partner is not None:
+        try:
+            table = write_comparison(run, out_dir)
+        except OSError as exc:
+            print(f"plot.py: warning: comparison.md not written: {exc}", file=sys.stderr)
+            status = EXIT_PLOT_FAILED
+        else:
+            if table:
+                note(f"checks of both runs side by side: {table}")
     return status
 
 

@@ -3,7 +3,9 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "config.hpp"
@@ -14,10 +16,25 @@
 namespace lagremap {
 
 // A validation number of a problem: passes when |value - reference| <= tolerance.
+// The optional numbers put a remap result next to what it is compared with in
+// the source paper's figures (summary.json writes them only when set).
 struct Check {
+  Check() = default;
+  // The required fields (a constructor so that brace lists of five stay
+  // complete initialisations, without -Wmissing-field-initializers).
+  Check(std::string name, double value, double reference, double tolerance, std::string note)
+      : name(std::move(name)),
+        value(value),
+        reference(reference),
+        tolerance(tolerance),
+        note(std::move(note)) {}
   std::string name;
   double value = 0.0, reference = 0.0, tolerance = 0.0;
   std::string note;  // what the number is and where the reference comes from
+  // Remap mode: the reference the same check has in lagrange mode.
+  std::optional<double> lagrange_reference;
+  // The paper's number for this quantity in this run's mode (PROBLEMS.md).
+  std::optional<double> paper;
   bool pass() const;
 };
 
@@ -74,6 +91,9 @@ const std::vector<Problem>& problemRegistry();
 const Problem& findProblem(const std::string& name);
 
 // Helpers shared by the generators.
+// Remap mode: the checks whose reference is the same in both modes (an exact
+// solution) get it as their lagrange_reference; lagrange mode: nothing.
+void setModeIndependentReferences(const Config& config, std::vector<Check>& checks);
 // Throws ConfigError when the keys are declared for remap mode: the problem's
 // remap set-up (`what`, e.g. its gas-filled box) does not exist yet.
 void refuseRemapMode(const Config& config, const std::string& problem, const std::string& what);

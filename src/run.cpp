@@ -714,6 +714,7 @@ RunResult runProblem(const RunOptions& options) {
       const InterfaceMeasure measure =
           measureInterface(decomposed ? global_mesh : mesh, result.fields, k);
       json.beginObject("material_" + std::to_string(k))
+          .value("solid", setup.materials[k].strength != StrengthKind::None)
           .value("mixed_cells", measure.mixed_cells)
           .value("area", measure.area)
           .value("mixed_cells_per_unit_area",
@@ -731,10 +732,10 @@ RunResult runProblem(const RunOptions& options) {
     json.beginObject(check.name)
         .value("value", check.value)
         .value("reference", check.reference)
-        .value("tolerance", check.tolerance)
-        .value("pass", check.pass())
-        .value("note", check.note)
-        .endObject();
+        .value("tolerance", check.tolerance);
+    if (check.lagrange_reference) json.value("lagrange_reference", *check.lagrange_reference);
+    if (check.paper) json.value("paper", *check.paper);
+    json.value("pass", check.pass()).value("note", check.note).endObject();
   }
   json.endObject();
   json.beginObject("config");

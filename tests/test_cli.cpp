@@ -3,7 +3,9 @@
 // one-line reason and the last good state on disk.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <fstream>
+#include <utility>
 
 #include "test_support.hpp"
 
@@ -140,8 +142,9 @@ TEST(CommandLine, RemapRunReportsItsInterfaces) {
   std::stringstream text;
   text << summary.rdbuf();
   const std::string json = text.str();
-  for (const char* field : {"\"mode\": \"remap\"", "\"interfaces\"", "\"material_0\"",
-                            "\"mixed_cells_per_unit_area\"", "\"smeared_width\""}) {
+  for (const char* field :
+       {"\"mode\": \"remap\"", "\"interfaces\"", "\"material_0\"", "\"mixed_cells_per_unit_area\"",
+        "\"smeared_width\"", "\"solid\": true", "\"solid\": false"}) {
     EXPECT_NE(json.find(field), std::string::npos) << field;
   }
   // The alpha = 1/2 surface is the bar's outline off the wall (5 + 5 + 1 m) in
@@ -149,6 +152,17 @@ TEST(CommandLine, RemapRunReportsItsInterfaces) {
   const std::size_t at = json.find("\"area\": ");
   ASSERT_NE(at, std::string::npos);
   EXPECT_NEAR(std::stod(json.substr(at + 8)), 11.0 * 0.025, 0.2 * 11.0 * 0.025);
+  // The final length sits next to the paper's Lagrange (4.62) and remap
+  // (4.63) lengths; the kinetic energy's reference (0) is that of both modes.
+  for (const auto& [field, number] :
+       {std::pair<const char*, double>{"\"lagrange_reference\": ", 4.62}, {"\"paper\": ", 4.63}}) {
+    const std::size_t where = json.find(field, json.find("\"final_length\""));
+    ASSERT_NE(where, std::string::npos) << field;
+    EXPECT_DOUBLE_EQ(std::stod(json.substr(where + std::strlen(field))), number) << field;
+  }
+  const std::size_t kinetic = json.find("\"kinetic_fraction\"");
+  ASSERT_NE(kinetic, std::string::npos);
+  EXPECT_NE(json.find("\"lagrange_reference\": 0", kinetic), std::string::npos);
   std::filesystem::remove_all(dir);
 }
 
