@@ -95,6 +95,7 @@ int runCommandLine(int argc, char* argv[]) {
 
   if (list) {
     for (const auto& problem : problemRegistry()) {
+      if (!parallel::isRoot()) break;
       std::printf("%-10s %s\n", problem.name, problem.description);
     }
     return 0;
@@ -138,6 +139,7 @@ int runCommandLine(int argc, char* argv[]) {
     if (app.count("--order")) options.config.set("numerics.order", std::to_string(order));
     options.config.scaleCellCounts(scale);
     if (print_config) {
+      if (!parallel::isRoot()) return 0;
       std::printf("# problem %s: every settable key (--set key=value, or in a TOML deck)\n%s",
                   problem.name, options.config.printable().c_str());
       return 0;

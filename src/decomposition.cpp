@@ -73,13 +73,16 @@ void Halo::exchange(const std::vector<Link>& links, const std::vector<FieldRef>&
     send_size += link.send.extent(0) * std::size_t(row);
     recv_size += link.recv.extent(0) * std::size_t(row);
   }
+  // Buffers grow to the largest message set and stay (no allocation per step).
   if (send_buffer_.extent(0) < send_size) {
     send_buffer_ = RealView(Kokkos::view_alloc(Kokkos::WithoutInitializing, "lagremap::halo::send"),
                             send_size);
+    send_host_ = Kokkos::create_mirror_view(send_buffer_);
   }
   if (recv_buffer_.extent(0) < recv_size) {
     recv_buffer_ = RealView(Kokkos::view_alloc(Kokkos::WithoutInitializing, "lagremap::halo::recv"),
                             recv_size);
+    recv_host_ = Kokkos::create_mirror_view(recv_buffer_);
   }
   // Each link's message: field after field, entity-major within a field.
   std::size_t offset = 0;
@@ -91,9 +94,7 @@ void Halo::exchange(const std::vector<Link>& links, const std::vector<FieldRef>&
   }
   Kokkos::fence();
   // MPI reads host memory: a device build stages the buffers through host mirrors.
-  auto send_host = Kokkos::create_mirror_view(send_buffer_);
-  auto recv_host = Kokkos::create_mirror_view(recv_buffer_);
-  Kokkos::deep_copy(send_host, send_buffer_);
+  Kokkos::deep_copy(send_host_, send_buffer_);
   std::vector<MPI_Request> requests;
   requests.reserve(2 * links.size());
   std::size_t send_offset = 0, recv_offset = 0;
@@ -101,16 +102,16 @@ void Halo::exchange(const std::vector<Link>& links, const std::vector<FieldRef>&
     const int recv_count = int(link.recv.extent(0)) * row;
     const int send_count = int(link.send.extent(0)) * row;
     requests.emplace_back();
-    MPI_Irecv(recv_host.data() + recv_offset, recv_count, MPI_DOUBLE, link.rank, 0, MPI_COMM_WORLD,
+    MPI_Irecv(recv_host_.data() + recv_offset, recv_count, MPI_DOUBLE, link.rank, 0, MPI_COMM_WORLD,
               &requests.back());
     requests.emplace_back();
-    MPI_Isend(send_host.data() + send_offset, send_count, MPI_DOUBLE, link.rank, 0, MPI_COMM_WORLD,
+    MPI_Isend(send_host_.data() + send_offset, send_count, MPI_DOUBLE, link.rank, 0, MPI_COMM_WORLD,
               &requests.back());
     recv_offset += std::size_t(recv_count);
     send_offset += std::size_t(send_count);
   }
   MPI_Waitall(int(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
-  Kokkos::deep_copy(recv_buffer_, recv_host);
+  Kokkos::deep_copy(recv_buffer_, recv_host_);
   offset = 0;
   for (const Link& link : links) {
     for (const FieldRef& field : fields) {

@@ -50,6 +50,7 @@ class Halo {
  private:
   void exchange(const std::vector<Link>& links, const std::vector<FieldRef>& fields) const;
   mutable RealView send_buffer_, recv_buffer_;
+  mutable RealView::HostMirror send_host_, recv_host_;  // the same Views on host backends
 };
 
 // This rank's part of a globally generated mesh and the halo linking it to
