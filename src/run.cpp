@@ -160,6 +160,54 @@ void writeSnapshot(io::SnapshotSeries& series, const FinalFields& fields, const 
   series.write(fields.time, snapshot_mesh, cell_fields);
 }
 
+// Runs `action` on every rank; an error one rank finds (bad input, an
+// unreadable file) is thrown as ConfigError by all, with the lowest rank's message.
+template <class Action>
+void collectively(Action action) {
+  std::string error;
+  try {
+    action();
+  } catch (const std::exception& bad) {
+    error = bad.what();
+  }
+  error = parallel::firstMessage(error);
+  if (!error.empty()) throw ConfigError(error);
+}
+
+// Replaces the generated mesh and initial cells of `setup` by this rank's
+// subdomain; the generated mesh goes to `global_mesh` (output connectivity).
+std::unique_ptr<Halo> keepSubdomain(ProblemSetup& setup, Mesh& global_mesh,
+                                    const std::string& problem) {
+  Subdomain sub;
+  try {
+    sub = decompose(setup.mesh);
+  } catch (const std::invalid_argument& error) {
+    throw ConfigError(problem + ": " + error.what());
+  }
+  setup.cells = localInitialCells(setup.cells, sub.mesh, int(setup.materials.size()));
+  global_mesh = std::move(setup.mesh);
+  setup.mesh = std::move(sub.mesh);
+  return std::make_unique<Halo>(std::move(sub.halo));
+}
+
+// The remap.* keys; the trace threshold goes to the state (the mixture rules read it).
+RemapControls readRemapControls(const Config& config, State& state) {
+  RemapControls controls;
+  controls.beta_alpha = config.real("remap.beta");
+  controls.alpha_floor = config.real("remap.alpha_floor");
+  state.alpha_trace = config.real("remap.alpha_trace");
+  if (!(state.alpha_trace >= 0.0 && state.alpha_trace < 0.5 / state.n_materials)) {
+    throw ConfigError("remap.alpha_trace must be in [0, 0.5 / number of materials)");
+  }
+  if (!(controls.beta_alpha >= 1.0 && controls.beta_alpha <= 2.0)) {
+    throw ConfigError("remap.beta must be in [1, 2]");
+  }
+  if (!(controls.alpha_floor >= 0.0 && controls.alpha_floor < 0.5)) {
+    throw ConfigError("remap.alpha_floor must be in [0, 0.5)");
+  }
+  return controls;
+}
+
 // The header and the lines of steps <= last_step of an existing history.csv
 // ("" if there is none): what a restart from step last_step keeps.
 std::string historyUpTo(const std::string& path, long last_step) {
@@ -382,31 +430,11 @@ RunResult runProblem(const RunOptions& options) {
   const bool decomposed = parallel::size() > 1;
   Mesh global_mesh;  // the generated mesh of a decomposed run (output connectivity)
   std::unique_ptr<Halo> halo;
-  if (decomposed) {
-    Subdomain sub;
-    try {
-      sub = decompose(setup.mesh);
-    } catch (const std::invalid_argument& error) {
-      throw ConfigError(options.problem + ": " + error.what());
-    }
-    setup.cells = localInitialCells(setup.cells, sub.mesh, int(setup.materials.size()));
-    global_mesh = std::move(setup.mesh);
-    setup.mesh = std::move(sub.mesh);
-    halo = std::make_unique<Halo>(std::move(sub.halo));
-  }
+  if (decomposed) halo = keepSubdomain(setup, global_mesh, options.problem);
   const Mesh* output_mesh = decomposed ? &global_mesh : nullptr;
   Mesh& mesh = setup.mesh;
   State state = allocateState(mesh, numerics.gather == Gather::Atomics);
-  {
-    std::string error;  // found by one rank, reported by all
-    try {
-      initializeState(setup, state);
-    } catch (const ConfigError& bad) {
-      error = bad.what();
-    }
-    error = parallel::firstMessage(error);
-    if (!error.empty()) throw ConfigError(error);
-  }
+  collectively([&] { initializeState(setup, state); });
 
   PhaseTimers timers;
   LagrangeStep lagrange(mesh, state, numerics, timers, halo.get());
@@ -417,19 +445,7 @@ RunResult runProblem(const RunOptions& options) {
   lagrange.saveStartOfStep();
   std::unique_ptr<RemapStep> remap;
   if (config.remapMode()) {
-    RemapControls controls;
-    controls.beta_alpha = config.real("remap.beta");
-    controls.alpha_floor = config.real("remap.alpha_floor");
-    state.alpha_trace = config.real("remap.alpha_trace");
-    if (!(state.alpha_trace >= 0.0 && state.alpha_trace < 0.5 / state.n_materials)) {
-      throw ConfigError("remap.alpha_trace must be in [0, 0.5 / number of materials)");
-    }
-    if (!(controls.beta_alpha >= 1.0 && controls.beta_alpha <= 2.0)) {
-      throw ConfigError("remap.beta must be in [1, 2]");
-    }
-    if (!(controls.alpha_floor >= 0.0 && controls.alpha_floor < 0.5)) {
-      throw ConfigError("remap.alpha_floor must be in [0, 0.5)");
-    }
+    const RemapControls controls = readRemapControls(config, state);
     try {
       remap = std::make_unique<RemapStep>(mesh, state, controls, timers, halo.get());
     } catch (const std::invalid_argument& error) {
@@ -444,14 +460,9 @@ RunResult runProblem(const RunOptions& options) {
   loop.mode = options.mode;
   const bool restart = !options.restart_file.empty();
   if (restart) {
-    std::string error;  // found by one rank, reported by all
-    try {
+    collectively([&] {
       loop = readCheckpoint(options.restart_file, mesh, state, options.problem, options.mode);
-    } catch (const std::exception& bad) {
-      error = bad.what();
-    }
-    error = parallel::firstMessage(error);
-    if (!error.empty()) throw ConfigError(error);
+    });
     if (!(loop.time < t_end)) {
       throw ConfigError("checkpoint '" + options.restart_file +
                         "' is at t = " + std::to_string(loop.time) + ", not before t_end");
