@@ -494,23 +494,55 @@ def plot_wilkins_profiles(run: Run, out_path: str) -> str:
     Thin horizontal lines mark the exact plastic state and elastic precursor
     levels of the default impact, so the two-wave structure (precursor
     plateau ahead of the plastic shock) can be judged by eye.
+
+    The figure shows the aluminium only.  A remap run also holds the light
+    gas behind the flyer (x from -0.04 to the flyer's back face): its cells
+    (alpha_al < 1/2) are left out, the density drawn is aluminium's own
+    (rho_al, not the cell's mixture density, which falls to ~1 kg/m3 over
+    the smeared back face), and the x axis spans the aluminium of the runs,
+    the lagrange run's whole mesh, so both curves fill the same frame.
+    Profiles written before the alpha_al column are drawn whole.
     """
     fields = ["rho", "u", "sigma_xx"]
     curves = curve_tables(run, "wilkins_profile.csv", ["x"] + fields)
     exact = {"rho": (2985.6, 2800.2), "u": (400.0, 35.2), "sigma_xx": (-6.637e9, -0.636e9)}
+    drawn = []  # (curve, {field: values on the aluminium cells, in x order})
+    gas_note = None
+    for curve, t in curves:
+        order = np.argsort(t["x"], kind="stable")
+        keep = np.ones(len(order), dtype=bool)
+        columns = {f: t[f][order] for f in ["x"] + fields}
+        alpha = t.get("alpha_al")
+        if alpha is not None and alpha.dtype.kind == "f":
+            keep = alpha[order] >= 0.5
+            if "rho_al" in t and t["rho_al"].dtype.kind == "f":
+                columns["rho"] = t["rho_al"][order]
+            if not keep.all() and keep.any():
+                x_gas = columns["x"][~keep]
+                gas_note = (f"{curve.label}: cells with alpha_al < 1/2 (the gas, "
+                            f"x ≤ {x_gas.max():.4g} m) not drawn; ρ of the aluminium")
+        drawn.append((curve, {f: v[keep] for f, v in columns.items()}))
     fig, axes = plt.subplots(3, 1, figsize=(9, 9.5), sharex=True)
     for ax, field in zip(axes, fields):
         plastic, precursor = exact[field]
         ax.axhline(plastic, ls="-", lw=0.6, color="0.35", label="exact plastic state")
         ax.axhline(precursor, ls="-.", lw=0.6, color="0.35", label="exact elastic precursor")
-        for curve, t in curves:
-            order = np.argsort(t["x"], kind="stable")
-            ax.plot(t["x"][order], t[field][order], lw=1.2, label=curve.label, **curve.style)
+        for curve, columns in drawn:
+            ax.plot(columns["x"], columns[field], lw=1.2, label=curve.label, **curve.style)
         ax.set_ylabel(LABELS[field])
         ax.grid(alpha=0.3)
+    xs = [columns["x"] for _, columns in drawn if len(columns["x"])]
+    if xs:
+        lo = min(x.min() for x in xs)
+        hi = max(x.max() for x in xs)
+        pad = 0.02 * (hi - lo)
+        axes[-1].set_xlim(lo - pad, hi + pad)
     axes[0].legend(loc="best", fontsize="small")
     axes[-1].set_xlabel(LABELS["x"])
-    fig.suptitle(pair_title(run, "Wilkins flyer plate"))
+    title = pair_title(run, "Wilkins flyer plate")
+    if gas_note:
+        title += "\n" + gas_note
+    fig.suptitle(title)
     fig.tight_layout()
     return save(fig, out_path)
 
