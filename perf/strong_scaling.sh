@@ -9,7 +9,7 @@
 #   perf/strong_scaling.sh [OUT_DIR] [-- LAGREMAP ARGS...]
 #     OUT_DIR  default: out/strong_scaling (table.md, results.csv, scaling.png)
 #     LAGREMAP ARGS  the problem (default: --problem sedov --scale 1.3333 --t-end 0.15,
-#                    40^3 cells, about 150 steps)
+#                    40^3 cells, 292 steps)
 #   Environment: SCALING_CONFIGS (default "1x1 1x2 2x1": ranks x threads),
 #     SCALING_REPEATS (default 3; the table shows the best of the runs),
 #     LAGREMAP_BUILD_DIR (default build/).
@@ -30,6 +30,9 @@ exe=$build/lagremap
 mkdir -p "$out"
 # Open MPI as root on a small machine: allowed, and as many ranks as asked.
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+# No binding: Open MPI binds a rank to one core by default, which would put
+# all the threads of a 1-rank run on that core.
+export OMPI_MCA_hwloc_base_binding_policy=none
 export OMP_PROC_BIND=false
 
 # Load of the machine during the runs: busy CPU seconds not spent by us.
