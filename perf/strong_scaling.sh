@@ -30,9 +30,9 @@ exe=$build/lagremap
 mkdir -p "$out"
 # Open MPI as root on a small machine: allowed, and as many ranks as asked.
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
-# No binding: Open MPI binds a rank to one core by default, which would put
-# all the threads of a 1-rank run on that core.
-export OMPI_MCA_hwloc_base_binding_policy=none
+# Placement: each rank bound to its own `threads` cores (Open MPI's default
+# binds a rank to one core, which would put all the threads of a 1-rank run
+# on that core; unbound ranks get moved about and wait on each other).
 export OMP_PROC_BIND=false
 
 # Load of the machine during the runs: busy CPU seconds not spent by us.
@@ -50,7 +50,7 @@ for config in $configs; do
     rm -rf "$dir"
     # Exit code 1 (a check missed: the run is cut short on purpose) is fine.
     status=0
-    OMP_NUM_THREADS=$threads mpiexec -np "$ranks" "$exe" "${problem_args[@]}" --quiet \
+    OMP_NUM_THREADS=$threads mpiexec -np "$ranks" --map-by "slot:PE=$threads" --bind-to core "$exe" "${problem_args[@]}" --quiet \
       --output "$dir" > "$dir.log" 2>&1 || status=$?
     if [ "$status" -gt 1 ] || [ ! -f "$dir/summary.json" ]; then
       echo "strong_scaling: $config failed (exit $status):"; cat "$dir.log"; exit 1
