@@ -43,11 +43,52 @@ struct CellThermo {
 //   alpha^k v = alpha^k_n v_n + (w^k_n / sum w_n) (v - v_n).
 // Under equal strain a solid sharing a cell with gas is compressed or
 // stretched as much as the gas, to GPa in a step (README, Numerical method).
+// Pressure relaxation: each material's volume also changes by
+// relax^k = v_n w^k_n (p^k - p_mean), p_mean = sum w_n p / sum w_n (sums to 0):
+// to first order the pressures equalise within the step. Without it a solid
+// in a cell it shares with gas keeps its pressure while the gas takes every
+// volume change, and a cell of beryllium at 3e8 Pa and gas at 1e4 Pa expands
+// without end (the `shell`'s inner surface turned into a foam of beryllium
+// and near-vacuum 20 mm thick). p^k are the stage-start pressures. Summed
+// as v_n (w^k / sum w) sum_m w^m (p^k - p^m): the mean itself loses the
+// pressure differences to round-off when one weight (a near-vacuum gas,
+// w ~ 1e7) dwarfs the others, and w^k times that round-off was a volume
+// three times the cell's. Traces (no say in the stress, w = 0) take no part.
+// The linearisation is only good for small volume changes: an aluminium
+// stretched to 0.78 rho0 (-1.2e10 Pa, it would spall) beside gas was
+// squeezed to 3 rho0 in one stage. So no material changes its volume by more
+// than kMaxRelaxation of it per step; all are scaled alike (the sum stays 0).
+constexpr double kMaxRelaxation = 0.1;
+KOKKOS_INLINE_FUNCTION double relaxationVolume(const State& s, Index c, int k) {
+  const auto relaxes = [&](int m) {
+    return s.alpha_ck0(c, m) > 0.0 && s.alpha_ck0(c, m) >= s.alpha_trace && s.w_ck0(c, m) > 0.0;
+  };
+  if (!relaxes(k)) return 0.0;
+  double weight_sum = 0.0;
+  for (int m = 0; m < s.n_materials; ++m) weight_sum += relaxes(m) ? s.w_ck0(c, m) : 0.0;
+  const auto unlimited = [&](int m) {
+    double pull = 0.0;
+    for (int n = 0; n < s.n_materials; ++n) {
+      if (n != m && relaxes(n)) pull += s.w_ck0(c, n) * (s.p_ck(c, m) - s.p_ck(c, n));
+    }
+    return s.vol_c0(c) * (s.w_ck0(c, m) / weight_sum) * pull;
+  };
+  double scale = 1.0;
+  for (int m = 0; m < s.n_materials; ++m) {
+    if (!relaxes(m)) continue;
+    const double change = math::fabs(unlimited(m));
+    const double allowed = kMaxRelaxation * s.alpha_ck0(c, m) * s.vol_c0(c);
+    if (change * scale > allowed) scale = allowed / change;
+  }
+  return scale * unlimited(k);
+}
+
 KOKKOS_INLINE_FUNCTION void shareVolumeChange(const State& s, Index c, double volume) {
   double weight_sum = 0.0;
   int present = 0;
   for (int k = 0; k < s.n_materials; ++k) {
-    present += s.alpha_ck0(c, k) > 0.0;
+    if (!(s.alpha_ck0(c, k) > 0.0)) continue;  // an absent material's w is stale
+    ++present;
     weight_sum += s.w_ck0(c, k);
   }
   if (present < 2 || !(weight_sum > 0.0)) return;
@@ -56,8 +97,9 @@ KOKKOS_INLINE_FUNCTION void shareVolumeChange(const State& s, Index c, double vo
   for (int k = 0; k < s.n_materials; ++k) {
     const double alpha_start = s.alpha_ck0(c, k);
     if (!(alpha_start > 0.0)) continue;
-    const double material_volume =
-        alpha_start * volume_start + (s.w_ck0(c, k) / weight_sum) * (volume - volume_start);
+    const double material_volume = alpha_start * volume_start +
+                                   (s.w_ck0(c, k) / weight_sum) * (volume - volume_start) +
+                                   relaxationVolume(s, c, k);
     // a material cannot be squeezed out: keep a sliver of its start volume
     const double alpha = material_volume > 1e-3 * alpha_start * volume_start
                              ? material_volume / volume
@@ -122,7 +164,13 @@ KOKKOS_INLINE_FUNCTION CellThermo cellThermo(const State& s, Index c, double vol
     deviator = scale * deviator;
     for (int k = 0; k < s.n_materials; ++k) {
       const double alpha = s.alpha_ck(c, k);
-      if (alpha > 0.0 && alpha < threshold) s.p_ck(c, k) = mix.pressure;
+      if (alpha > 0.0 && alpha < threshold) {
+        s.p_ck(c, k) = mix.pressure;
+        // no say in the volume change either: the gas trace in an aluminium
+        // cell kept the w = alpha / (gamma p) of its near-vacuum past and took
+        // the whole cell's compression
+        s.w_ck(c, k) = 0.0;
+      }
     }
   }
   if (s.has_solids) storeSym(s.S_c, c, deviator);

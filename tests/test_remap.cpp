@@ -289,12 +289,14 @@ TEST(Remap, PileAndWilkinsInRemapModeMatchTheirChecks) {
 namespace lagremap {
 namespace {
 
-// DESIGN §3 energy split in one mixed cell under a uniform compression with
-// no dissipation (the cell's energy change is exactly the reversible work):
-// each material gets its own -p^k dv^k, not a share of the total, with dv^k
-// its part of the volume change, in proportion to alpha^k / (rho^k a_k^2)
-// (README: shared volume changes; alpha^k dv under equal strain).
-TEST(MixedCell, ReversibleWorkGoesToEachMaterialByItsOwnPressure) {
+// DESIGN §3 energy split in one mixed cell under a uniform compression (the
+// cell's energy change is exactly the compression work): each material gets
+// its own -p^k dv^k, not a share of the total, with dv^k its part of the
+// volume change, in proportion to w^k = alpha^k / (rho^k a_k^2) (README:
+// shared volume changes; alpha^k dv under equal strain), plus the pressure
+// relaxation relax^k = v w^k (p^k - p_mean) with its own work -p^k relax^k;
+// the relaxation's dissipation sum_k p^k relax^k >= 0 is heat, shared by mass.
+TEST(MixedCell, EachMaterialWorksByItsOwnPressureAndPressuresRelax) {
   BlockSpec block;  // one cell, not of unit volume (the work carries v)
   block.hi = {0.5, 0.4, 0.3};
   SideBoundaries sides;
@@ -335,9 +337,13 @@ TEST(MixedCell, ReversibleWorkGoesToEachMaterialByItsOwnPressure) {
     weight[k] = alpha[k] / (gamma[k] * p_k(0, k));
     weight_sum += weight[k];
   }
+  const double p_mean = (weight[0] * p_k(0, 0) + weight[1] * p_k(0, 1)) / weight_sum;
+  double relax[2], heat = 0.0;
   for (int k = 0; k < 2; ++k) {
     work[k] = -p_k(0, k) * (weight[k] / weight_sum) * volume * trace_L * dt;
     reversible += work[k];
+    relax[k] = volume * weight[k] * (p_k(0, k) - p_mean);
+    heat += p_k(0, k) * relax[k];
   }
   const double mass = m_k(0, 0) + m_k(0, 1);
   const double e_cell = (m_k(0, 0) * e0(0, 0) + m_k(0, 1) * e0(0, 1)) / mass;
@@ -348,8 +354,14 @@ TEST(MixedCell, ReversibleWorkGoesToEachMaterialByItsOwnPressure) {
       });
   auto e = Kokkos::create_mirror_view_and_copy(HostSpace(), state.e_ck);
   for (int k = 0; k < 2; ++k) {
-    EXPECT_NEAR(m_k(0, k) * (e(0, k) - e0(0, k)), work[k], 1e-14) << "material " << k;
+    const double expected = work[k] - p_k(0, k) * relax[k] + m_k(0, k) / mass * heat;
+    EXPECT_NEAR(m_k(0, k) * (e(0, k) - e0(0, k)), expected, 1e-14) << "material " << k;
   }
+  // The gas at the higher pressure expands into the other, volume is only
+  // exchanged, and the exchange is irreversible (heat >= 0).
+  EXPECT_GT(relax[0], 0.0);
+  EXPECT_NEAR(relax[0] + relax[1], 0.0, 1e-16);
+  EXPECT_GT(heat, 0.0);
   // and the two changes differ (a share of the total would give the gas at
   // the lower pressure part of the other's work)
   EXPECT_GT(std::abs(work[0] - reversible * alpha[0]), 1e-6);  // 3.2e-6 here
