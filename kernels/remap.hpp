@@ -129,7 +129,9 @@ inline void remapDensities(const State& state, const RemapLayout& layout, const 
 // Limited least-squares gradients (DESIGN §5) on the Lagrangian mesh, stored
 // already multiplied by their limiter: psi(x) = psi_c + grad . (x - x_c).
 // Also stores each cell's reach, the largest distance from its centroid to a
-// vertex: every point of the cell is within it (remapUpdate's lever limit).
+// vertex: every point of the cell is within it (remapUpdate's lever limit),
+// and each material's interface normal -grad alpha^k / |grad alpha^k|
+// (State::n_ck, for the stress relaxation of mixed cells, geometry.hpp).
 inline void remapGradients(const Mesh& mesh, const State& state, const RemapLayout& layout,
                            const RemapControls& controls, const MatRealView& q,
                            const DeviceView<Real** [3]>& gradient, const RealView& reach) {
@@ -137,6 +139,7 @@ inline void remapGradients(const Mesh& mesh, const State& state, const RemapLayo
   const auto neighbors = mesh.cell_neighbors;
   const auto x_n = mesh.x_n;
   const auto x_c = state.x_c;
+  const auto interface_normal = state.n_ck;
   const double beta_alpha = controls.beta_alpha;
   const bool limit = controls.limit;
   Kokkos::parallel_for(
@@ -177,6 +180,15 @@ inline void remapGradients(const Mesh& mesh, const State& state, const RemapLayo
             bounds.include(value);
           }
           const Vec3 grad = solver * rhs;
+          if (v < layout.n_materials && c < Index(interface_normal.extent(0))) {
+            // the interface normal of the next Lagrangian steps (unlimited:
+            // the limiter scales the gradient, and may zero it)
+            const double length = math::sqrt(dot(grad, grad));
+            const Vec3 normal = length > 0.0 ? (-1.0 / length) * grad : Vec3{0.0, 0.0, 0.0};
+            interface_normal(c, v, 0) = normal.x;
+            interface_normal(c, v, 1) = normal.y;
+            interface_normal(c, v, 2) = normal.z;
+          }
           VertexExcursion excursion;
           for (int p = 0; p < 8; ++p) excursion.include(dot(grad, vertex[p]));
           const double beta = v < layout.n_materials ? beta_alpha : 1.0;

@@ -64,6 +64,8 @@ void allocateMaterialState(State& s, Index n_cells, int n_materials, bool has_so
   s.S_ck0 = tensors("S_ck0");
   s.B_ck = tensors("B_ck");
   s.B_ck0 = tensors("B_ck0");
+  s.n_ck = MatVec3View("lagremap::state::n_ck", has_solids && n_materials > 1 ? n_cells : 0,
+                       n_materials);
 }
 
 }  // namespace lagremap
