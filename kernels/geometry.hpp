@@ -43,11 +43,75 @@ struct CellThermo {
 //   alpha^k v = alpha^k_n v_n + (w^k_n / sum w_n) (v - v_n).
 // Under equal strain a solid sharing a cell with gas is compressed or
 // stretched as much as the gas, to GPa in a step (README, Numerical method).
+// Stress relaxation: each material's volume also changes by
+//   relax^k = v_n w^k_n (P^k - P_mean),  P_mean = sum w_n P / sum w_n  (sum 0),
+// so that to first order the P^k equalise within the step; its work is
+// -p^k relax^k (updateMaterials), irreversible. P^k = p^k for a fluid, and
+// p^k - f^k n^k . S^k . n^k for a solid, n^k the normal of its interface from
+// the last remap and f^k = max(0, 2 alpha^k - 1): a cell mostly of solid is
+// the surface layer of a body, whose normal stress -p + S_nn meets the gas
+// pressure across a sharp interface; a solid fragment or mist in gas meets
+// it with its pressure alone (its deviator, driven by the cell's strain rate,
+// which is the gas's, means nothing there).
+// Why: without relaxation a solid sharing a cell with gas keeps its pressure
+// while the gas takes every volume change, and a cell of beryllium at 3e8 Pa
+// and gas at 1e4 Pa expands without end (the `shell`'s inner surface turned
+// into a foam of beryllium and near-vacuum 20 mm thick and the shell stopped
+// 5 mm early); equalising p instead of the normal stress halves the hoop
+// stress of the shell's surface cells (sigma_rr = 0 needs p = S_rr) and it
+// collapsed 3 mm too far; with S_nn at any alpha the beryllium mist in the
+// shell's outer gas was pulled into 3e10 Pa of tension and tangled its cell.
+// p^k are the stage-start pressures, S^k the step-start deviators (the same
+// numbers in updateMaterials and here). Summed as
+// v_n (w^k / sum w) sum_m w^m (P^k - P^m): the mean itself loses the
+// differences to round-off when one weight (a near-vacuum gas, w ~ 1e7)
+// dwarfs the others, and w^k times that round-off was three times the
+// cell's volume. Traces (no say in the stress, w = 0) take no part.
+// The linearisation holds for small volume changes only: an aluminium
+// stretched to 0.78 rho0 (-1.2e10 Pa: it would spall) beside gas was
+// squeezed to 3 rho0 in one stage. So no material changes its volume by more
+// than kMaxRelaxation of it per step; all are scaled alike (the sum stays 0).
+constexpr double kMaxRelaxation = 0.1;
+KOKKOS_INLINE_FUNCTION double relaxationVolume(const State& s, Index c, int k) {
+  const auto relaxes = [&](int m) {
+    return s.alpha_ck0(c, m) > 0.0 && s.alpha_ck0(c, m) >= s.alpha_trace && s.w_ck0(c, m) > 0.0;
+  };
+  const bool normals = c < Index(s.n_ck.extent(0));
+  const auto normalStress = [&](int m) {  // -P^m
+    double sigma = -s.p_ck(c, m);
+    if (normals && s.materials(m).strength != StrengthKind::None) {
+      const Vec3 n{s.n_ck(c, m, 0), s.n_ck(c, m, 1), s.n_ck(c, m, 2)};
+      const double body = 2.0 * s.alpha_ck0(c, m) - 1.0;  // f^m
+      if (body > 0.0) sigma += body * dot(n, loadSym(s.S_ck0, c, m) * n);
+    }
+    return sigma;
+  };
+  if (!relaxes(k)) return 0.0;
+  double weight_sum = 0.0;
+  for (int m = 0; m < s.n_materials; ++m) weight_sum += relaxes(m) ? s.w_ck0(c, m) : 0.0;
+  const auto unlimited = [&](int m) {
+    double pull = 0.0;
+    for (int n = 0; n < s.n_materials; ++n) {
+      if (n != m && relaxes(n)) pull += s.w_ck0(c, n) * (normalStress(n) - normalStress(m));
+    }
+    return s.vol_c0(c) * (s.w_ck0(c, m) / weight_sum) * pull;
+  };
+  double scale = 1.0;
+  for (int m = 0; m < s.n_materials; ++m) {
+    if (!relaxes(m)) continue;
+    const double change = math::fabs(unlimited(m));
+    const double allowed = kMaxRelaxation * s.alpha_ck0(c, m) * s.vol_c0(c);
+    if (change * scale > allowed) scale = allowed / change;
+  }
+  return scale * unlimited(k);
+}
+
 KOKKOS_INLINE_FUNCTION void shareVolumeChange(const State& s, Index c, double volume) {
   double weight_sum = 0.0;
   int present = 0;
   for (int k = 0; k < s.n_materials; ++k) {
-    present += s.alpha_ck0(c, k) > 0.0;
+    if (!(s.alpha_ck0(c, k) > 0.0)) continue;  // an absent material's w is stale
+    ++present;
     weight_sum += s.w_ck0(c, k);
   }
   if (present < 2 || !(weight_sum > 0.0)) return;
@@ -56,8 +120,9 @@ KOKKOS_INLINE_FUNCTION void shareVolumeChange(const State& s, Index c, double vo
   for (int k = 0; k < s.n_materials; ++k) {
     const double alpha_start = s.alpha_ck0(c, k);
     if (!(alpha_start > 0.0)) continue;
-    const double material_volume =
-        alpha_start * volume_start + (s.w_ck0(c, k) / weight_sum) * (volume - volume_start);
+    const double material_volume = alpha_start * volume_start +
+                                   (s.w_ck0(c, k) / weight_sum) * (volume - volume_start) +
+                                   relaxationVolume(s, c, k);
     // a material cannot be squeezed out: keep a sliver of its start volume
     const double alpha = material_volume > 1e-3 * alpha_start * volume_start
                              ? material_volume / volume
@@ -122,7 +187,13 @@ KOKKOS_INLINE_FUNCTION CellThermo cellThermo(const State& s, Index c, double vol
     deviator = scale * deviator;
     for (int k = 0; k < s.n_materials; ++k) {
       const double alpha = s.alpha_ck(c, k);
-      if (alpha > 0.0 && alpha < threshold) s.p_ck(c, k) = mix.pressure;
+      if (alpha > 0.0 && alpha < threshold) {
+        s.p_ck(c, k) = mix.pressure;
+        // no say in the volume change either: the gas trace in an aluminium
+        // cell kept the w = alpha / (gamma p) of its near-vacuum past and took
+        // the whole cell's compression
+        s.w_ck(c, k) = 0.0;
+      }
     }
   }
   if (s.has_solids) storeSym(s.S_c, c, deviator);

@@ -341,10 +341,11 @@ KOKKOS_INLINE_FUNCTION Mat3 stageDeformation(const CellNodesView& cell_nodes, co
 // - internal energies: a pure cell's material takes e_new; in a mixed cell,
 //   with W^k = dt alpha^k sigma^k : L (sigma^k of the stage start) and the
 //   dissipation D = m (e_new - e^n) - sum_k W^k,
-//   m^k (e^k - e^k,n) = W^k + alpha^k D, which sums to the cell's change;
-//   a trace (State::alpha_trace) keeps its specific energy (it does no work:
-//   the cell's specific change is the gas's, meaningless for a solid trace),
-//   the others share all of D with their alphas renormalised;
+//   m^k (e^k - e^k,n) = W^k + share^k D, which sums to the cell's change,
+//   share^k = m^k / m for D >= 0; for D < 0 by the masses of the condensed
+//   materials, or without them by the gases' internal energies (not alpha^k
+//   as DESIGN §3 says: see below); a trace (State::alpha_trace) does no work,
+//   W^k = 0, but takes its share of D;
 // - hypo-elastic deviators: objective Jaumann update of S^k with L, then
 //   radial return (the plastic work is already in the total energy, so e
 //   receives it without an extra term);
@@ -367,7 +368,11 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
   // W^k = dt v (-p^k share^k tr L + alpha^k S^k : L), v the stage-start volume
   // of L's definition
   const double volume = s.vol_c(c);
-  double dissipation = 0.0, active_alpha = 0.0, active_mass = 0.0, de_cell = 0.0;
+  // masses of the present materials, of the condensed ones (not ideal gases:
+  // their internal energy may go negative, in tension), and the gases'
+  // positive internal energy
+  double dissipation = 0.0, present_mass = 0.0, condensed_mass = 0.0, gas_heat = 0.0;
+  double de_cell = 0.0;
   double weight_sum = 0.0;  // compressibility weights of the step start
   for (int k = 0; k < s.n_materials && mixed; ++k) {
     if (s.alpha_ck(c, k) > 0.0) weight_sum += s.w_ck0(c, k);
@@ -382,10 +387,15 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
     for (int k = 0; k < s.n_materials; ++k) {
       const double alpha = s.alpha_ck(c, k);
       if (!(alpha > 0.0)) continue;
+      present_mass += s.m_ck(c, k);
+      if (s.materials(k).eos != EosKind::IdealGas) {
+        condensed_mass += s.m_ck(c, k);
+      } else if (s.e_ck0(c, k) > 0.0) {
+        gas_heat += s.m_ck(c, k) * s.e_ck0(c, k);
+      }
       if (alpha >= threshold) {
-        active_alpha += alpha;
-        active_mass += s.m_ck(c, k);
-        dissipation -= dt_stage * volume * stressPower(s, c, k, gradient, volumeShare(k));
+        dissipation -= dt_stage * volume * stressPower(s, c, k, gradient, volumeShare(k)) -
+                       s.p_ck(c, k) * relaxationVolume(s, c, k);
       }
     }
   }
@@ -395,15 +405,36 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
     const double alpha = s.alpha_ck(c, k);
     if (!(alpha > 0.0)) continue;
     const bool trace = alpha < threshold;
-    if (mixed && trace) {
-      s.e_ck(c, k) = s.e_ck0(c, k);
-    } else if (mixed) {
-      const double work = dt_stage * volume * stressPower(s, c, k, gradient, volumeShare(k));
-      // D >= 0 is heat, shared by volume fraction (DESIGN §3). A negative D
-      // is the scheme's round-off/splitting error, not physics: shared by
-      // volume it would cool a light gas beside a dense solid far below zero
-      // energy, so it is shared by mass (the same specific change for all).
-      const double share = dissipation >= 0.0 ? alpha / active_alpha : s.m_ck(c, k) / active_mass;
+    if (mixed) {
+      // A trace does no work (it has no say in the stress).
+      // (plus -p^k relax^k, the work of the pressure relaxation of
+      // shareVolumeChange on its own volume: irreversible, sum_k p^k relax^k
+      // >= 0 goes to D)
+      const double work = trace
+                              ? 0.0
+                              : dt_stage * volume * stressPower(s, c, k, gradient, volumeShare(k)) -
+                                    s.p_ck(c, k) * relaxationVolume(s, c, k);
+      // D >= 0 is shared by mass, traces included (the same specific change
+      // for all), not by volume fraction as DESIGN §3 says: it is kinetic
+      // energy of the cell's one velocity turned into heat, and the mass
+      // carries it (as in the remap's kinetic-energy fix). Shared by volume,
+      // the gas beside a solid got half the heat of the solid's impact for
+      // 1e-9 of the mass (the `ball`'s near-vacuum gas reached 1e14 J/kg).
+      // D < 0 is no heat but an error of the second-order corner velocities
+      // (of order aL |dV|^2 dt / h, dV the velocity jump across the cell,
+      // hundreds of J/kg where the `ball`'s aluminium is torn from the gas
+      // at 1000 m/s), which a gas cannot afford below zero energy. It goes
+      // to the condensed materials by mass (their energy may go negative,
+      // in tension) and only without them to the gases, in proportion to
+      // their internal energies (the same relative cooling, none below zero
+      // while the cell's internal energy is positive).
+      const bool condensed = s.materials(k).eos != EosKind::IdealGas;
+      double share = s.m_ck(c, k) / present_mass;
+      if (dissipation < 0.0 && condensed_mass > 0.0) {
+        share = condensed ? s.m_ck(c, k) / condensed_mass : 0.0;
+      } else if (dissipation < 0.0 && gas_heat > 0.0) {
+        share = s.e_ck0(c, k) > 0.0 ? s.m_ck(c, k) * s.e_ck0(c, k) / gas_heat : 0.0;
+      }
       s.e_ck(c, k) = s.e_ck0(c, k) + (work + share * dissipation) / s.m_ck(c, k);
     }
     const MaterialParams& material = s.materials(k);

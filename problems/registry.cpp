@@ -1,3 +1,6 @@
+#include <algorithm>
+#include <cmath>
+
 #include "../kernels/hex.hpp"
 #include "../src/diagnostics.hpp"
 #include "../src/materials.hpp"
@@ -12,11 +15,12 @@ extern const Problem kPileProblem;
 extern const Problem kTaylorProblem;
 extern const Problem kShellProblem;
 extern const Problem kBeamProblem;
+extern const Problem kBallProblem;
 
 const std::vector<Problem>& problemRegistry() {
   static const std::vector<Problem> problems = {kSodProblem,    kSedovProblem, kWilkinsProblem,
                                                 kTaylorProblem, kPileProblem,  kBeamProblem,
-                                                kShellProblem};
+                                                kShellProblem,  kBallProblem};
   return problems;
 }
 
@@ -177,10 +181,9 @@ void hostCellShapes(const HostMesh& mesh, std::vector<double>& volume,
   }
 }
 
-void refuseRemapMode(const Config& config, const std::string& problem, const std::string& what) {
-  if (!config.remapMode()) return;
-  throw ConfigError(problem + ": remap mode (" + what +
-                    ", PROBLEMS.md) is not set up yet; use --mode lagrange");
+void refuseLagrangeMode(const Config& config, const std::string& problem, const std::string& why) {
+  if (config.remapMode()) return;
+  throw ConfigError(problem + ": lagrange mode is not available (" + why + "); use --mode remap");
 }
 
 void fillMaterialRegions(ProblemSetup& setup, const MaterialRegions& regions,
@@ -270,6 +273,46 @@ double materialFrontX(const FinalFields& fields, int material, double y_line) {
     if (a0 >= 0.5 && a1 < 0.5) return x0 + (a0 - 0.5) / (a0 - a1) * (x1 - x0);
   }
   return NAN;
+}
+
+std::vector<AlphaCrossing> alphaCrossingsAlongRay(const FinalFields& fields, int material,
+                                                  const Vec3& origin, const Vec3& direction) {
+  const int nx = fields.nx, ny = fields.ny;
+  if (fields.nz != 1 || nx < 2 || ny < 2) {
+    throw std::logic_error(
+        "alphaCrossingsAlongRay: needs a slab one cell thick, 2 x 2 cells or more");
+  }
+  // Uniform block: centroid of cell (i, j) = first + i dx + j dy.
+  const Vec3 first{fields.x_c(0, 0), fields.x_c(0, 1), 0.0};
+  const double dx = fields.x_c(1, 0) - first.x, dy = fields.x_c(nx, 1) - first.y;
+  const auto alphaAt = [&](double x, double y) {
+    const double fi = std::clamp((x - first.x) / dx, 0.0, double(nx - 1));
+    const double fj = std::clamp((y - first.y) / dy, 0.0, double(ny - 1));
+    const int i = std::min(int(fi), nx - 2), j = std::min(int(fj), ny - 2);
+    const double a = fi - i, b = fj - j;
+    const auto value = [&](int ii, int jj) { return fields.alpha(ii + Index(nx) * jj, material); };
+    return (1 - a) * (1 - b) * value(i, j) + a * (1 - b) * value(i + 1, j) +
+           (1 - a) * b * value(i, j + 1) + a * b * value(i + 1, j + 1);
+  };
+  const double length = std::hypot(direction.x, direction.y);
+  const double ux = direction.x / length, uy = direction.y / length;
+  const double step = 0.125 * std::min(dx, dy);
+  // the block's extent; outside the outer centroids the values are constant
+  const double lo_x = first.x - 0.5 * dx, hi_x = first.x + (nx - 0.5) * dx;
+  const double lo_y = first.y - 0.5 * dy, hi_y = first.y + (ny - 0.5) * dy;
+  std::vector<AlphaCrossing> crossings;
+  double s0 = 0.0, a0 = alphaAt(origin.x, origin.y);
+  for (double s1 = step;; s1 += step) {
+    const double x = origin.x + s1 * ux, y = origin.y + s1 * uy;
+    if (x < lo_x || x > hi_x || y < lo_y || y > hi_y) break;  // out of the block
+    const double a1 = alphaAt(x, y);
+    if ((a0 - 0.5) * (a1 - 0.5) < 0.0 || (a1 == 0.5 && a0 != 0.5)) {
+      crossings.push_back({s0 + (0.5 - a0) / (a1 - a0) * (s1 - s0), a1 > a0});
+    }
+    s0 = s1;
+    a0 = a1;
+  }
+  return crossings;
 }
 
 ProblemSetup setupBlock(const Config& config, const Vec3& lo, const Vec3& hi,

@@ -1,15 +1,20 @@
 // `shell` — collapse of a thick beryllium shell (hypo-elastic perfectly
-// plastic, Mie-Gruneisen), PROBLEMS.md §5. Lagrange mode: the shell alone on a
-// polar hex mesh of a quarter annulus Ri = 0.08, Ro = 0.1 (symmetry planes
-// x = 0 and y = 0, one cell thick in z, free inner and outer surfaces), moving
-// inward with the incompressible Howell-Ball profile V = -V0 (Ri / r) e_r.
-// Checks: the stopping radii (smallest inner and outer radius reached) against
-// Howell & Ball's 50 mm / 78.1 mm.
+// plastic, Mie-Gruneisen), PROBLEMS.md §5, inward with the incompressible
+// Howell-Ball profile V = -V0 (Ri / r) e_r (or the paper's text's V0 r / Ri).
+// Checks: the stopping radii (smallest inner radius reached, and the outer
+// radius then) against Howell & Ball's 50 mm / 78.1 mm (paper: 51 / 79 mm).
+// Lagrange mode: the shell alone on a polar hex mesh of a quarter annulus
+// Ri = 0.08, Ro = 0.1 (symmetry planes x = 0 and y = 0, one cell thick in z,
+// free inner and outer surfaces).
+// Remap mode (the paper's): the whole annulus in gas (5 kg/m^3, at rest,
+// 1e5 Pa) inside and outside, on the fixed 160 x 160 mesh of [-0.11, 0.11]^2,
+// walls all round; the radii are read from the beryllium volume fraction.
 #include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
 
+#include "../src/diagnostics.hpp"
 #include "../src/problem.hpp"
 
 namespace lagremap {
@@ -18,8 +23,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 void declareShell(Config& config) {
-  // Its free surfaces would sweep the shell out of the fixed mesh.
-  refuseRemapMode(config, "shell", "the shell in gas on a 160 x 160 box");
+  const bool remap = config.remapMode();
   config.addReal("t_end", 130e-6, "s", "final time");
   declareHypoSolidKeys(config, "be", "Be-hypo");
   config.addReal("shell.inner_radius", 0.08, "m", "inner radius Ri");
@@ -27,21 +31,70 @@ void declareShell(Config& config) {
   config.addReal("shell.v0", 417.1, "m/s", "inward speed at the inner radius");
   config.addChoice("shell.profile", "howell_ball", {"howell_ball", "paper_text"},
                    "radial speed V0 Ri/r (incompressible) or V0 r/Ri (the paper's text)");
-  config.addReal("geometry.thickness", 1.25e-3, "m", "slab thickness along z (one cell)");
-  // mesh.nx: radial cells, mesh.ny: cells over the quarter circle
-  declareMeshKeys(config, 15, 90, 1);
-  declareBoundaryKeys(config, {"free", "free", "symmetry", "symmetry", "symmetry", "symmetry"});
+  config.addReal("shell.p0", 1e-6, "Pa", "initial pressure of the shell");
+  if (remap) {
+    config.addReal("domain.half_width", 0.11, "m", "fixed mesh [-w, w]^2 (remap)");
+    config.addReal("gas.rho", 5.0, "kg/m^3", "density of the gas inside and outside the shell");
+    config.addReal("gas.p", 1e5, "Pa", "pressure of the gas");
+    config.addReal("gas.gamma", 1.4, "-", "ratio of specific heats of the gas");
+    // One cell thick: the in-plane cell size 0.22 / 160, so that z does not set dt.
+    config.addReal("geometry.thickness", 1.375e-3, "m", "slab thickness along z (one cell)");
+    declareMeshKeys(config, 160, 160, 1);
+    declareBoundaryKeys(config, {"wall", "wall", "wall", "wall", "symmetry", "symmetry"});
+  } else {
+    config.addReal("geometry.thickness", 1.25e-3, "m", "slab thickness along z (one cell)");
+    // mesh.nx: radial cells, mesh.ny: cells over the quarter circle
+    declareMeshKeys(config, 15, 90, 1);
+    declareBoundaryKeys(config, {"free", "free", "symmetry", "symmetry", "symmetry", "symmetry"});
+  }
   config.addReal("check.inner_radius", 0.050, "m", "stopping inner radius (Howell & Ball)");
   config.addReal("check.outer_radius", 0.0781, "m", "stopping outer radius (Howell & Ball)");
   config.addReal("check.radius_tolerance", 0.002, "m", "tolerance on the stopping radii");
+}
+
+// Initial velocity of the shell at x (PROBLEMS.md §5): inward, V0 Ri / r or V0 r / Ri.
+Vec3 shellVelocity(const Vec3& x, double ri, double v0, bool howell_ball) {
+  const double r = std::hypot(x.x, x.y);
+  const double speed = howell_ball ? v0 * ri / r : v0 * r / ri;
+  return {-speed * x.x / r, -speed * x.y / r, 0.0};
 }
 
 ProblemSetup setupShell(const Config& config) {
   const MaterialParams be = readHypoSolid(config, "be", "Be-hypo");
   const double ri = config.real("shell.inner_radius"), ro = config.real("shell.outer_radius");
   const double thickness = config.real("geometry.thickness");
+  const double p0 = config.real("shell.p0");
   if (!(ri > 0 && ro > ri && thickness > 0)) {
     throw ConfigError("shell: need 0 < inner_radius < outer_radius and thickness > 0");
+  }
+  if (!(p0 >= 0)) throw ConfigError("shell: shell.p0 must be >= 0");
+  const double v0 = config.real("shell.v0");
+  const bool howell_ball = config.text("shell.profile") == "howell_ball";
+  const double e0 = p0 / (be.rho0 * be.Gamma0);  // Mie-Gruneisen at rho = rho0
+  if (config.remapMode()) {
+    MaterialParams gas;
+    gas.gamma = config.real("gas.gamma");
+    const double half_width = config.real("domain.half_width");
+    const double gas_rho = config.real("gas.rho"), gas_p = config.real("gas.p");
+    if (!(half_width > ro)) throw ConfigError("shell: the remap domain must contain the shell");
+    if (!(gas_rho > 0 && gas_p > 0 && gas.gamma > 1)) {
+      throw ConfigError("shell: gas.rho, gas.p must be > 0 and gas.gamma > 1");
+    }
+    CellShapes shapes;
+    ProblemSetup setup = setupBlock(config, {-half_width, -half_width, 0},
+                                    {half_width, half_width, thickness}, {be, gas}, shapes);
+    MaterialRegions regions;
+    regions.material_at = [=](const Vec3& x) {
+      const double r = std::hypot(x.x, x.y);
+      return r >= ri && r <= ro ? 0 : 1;
+    };
+    regions.rho = {be.rho0, gas_rho};
+    regions.e = {e0, gas_p / ((gas.gamma - 1.0) * gas_rho)};
+    regions.velocity = [=](int material, const Vec3& x) {
+      return material == 0 ? shellVelocity(x, ri, v0, howell_ball) : Vec3{0, 0, 0};
+    };
+    fillMaterialRegions(setup, regions);
+    return setup;
   }
   BlockSpec block;
   block.nx = int(config.integer("mesh.nx"));
@@ -58,35 +111,82 @@ ProblemSetup setupShell(const Config& config) {
   std::vector<double> volume;
   std::vector<Vec3> centroid;
   hostCellShapes(copyToHost(setup.mesh), volume, centroid);
-  const double v0 = config.real("shell.v0");
-  const bool howell_ball = config.text("shell.profile") == "howell_ball";
   for (const Vec3& x : centroid) {
-    const double r = std::hypot(x.x, x.y);
-    const double speed = howell_ball ? v0 * ri / r : v0 * r / ri;
     setup.cells.rho.push_back(be.rho0);
-    setup.cells.e.push_back(1e-6 / (be.rho0 * be.Gamma0));  // p0 = 1e-6 Pa
-    setup.cells.v.push_back({-speed * x.x / r, -speed * x.y / r, 0.0});
+    setup.cells.e.push_back(e0);
+    setup.cells.v.push_back(shellVelocity(x, ri, v0, howell_ball));
     setup.cells.mat.push_back(0);
   }
   return setup;
 }
 
-// Inner radius: the smallest node radius (the inner surface).
-double innerRadius(const Mesh& mesh, const State&) {
+// Inner radius of the shell after every step.
+// Lagrange: the smallest node radius (the inner surface).
+// Remap: the radius of the circle whose area is that of the gas inside the
+// shell, sqrt(sum alpha_gas a_c / pi) over the cells inside the shell's
+// mean radius (a_c = v_c / dz_c the cell's area in the slab's plane; the mean
+// radius sqrt(<r^2>) weighted by beryllium area lies in its pure band). For a
+// round interface smeared symmetrically this is the radius of the
+// alpha = 1/2 contour, measured over every direction at once.
+double innerRadius(const Mesh& mesh, const State& state) {
   const auto x_n = mesh.x_n;
   double radius = 0.0;
+  if (state.n_materials == 1) {
+    Kokkos::parallel_reduce(
+        "lagremap::diagnostics::inner_radius", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_nodes),
+        KOKKOS_LAMBDA(const Index n, double& acc) {
+          const double r = math::sqrt(x_n(n, 0) * x_n(n, 0) + x_n(n, 1) * x_n(n, 1));
+          acc = r < acc ? r : acc;
+        },
+        Kokkos::Min<double>(radius));
+    return parallel::min(radius);
+  }
+  const auto cell_nodes = mesh.cell_nodes;
+  const auto owned = mesh.cell_owned;  // sums over the ranks' owned cells
+  const auto alpha = state.alpha_ck;
+  const auto vol = state.vol_c;
+  const auto x_c = state.x_c;
+  // VTK nodes 0 and 4 are the bottom and top of the cell's first z-edge.
+  auto area = KOKKOS_LAMBDA(const Index c) {
+    return vol(c) / (x_n(cell_nodes(c, 4), 2) - x_n(cell_nodes(c, 0), 2));
+  };
+  SumArray<2> be_moments;  // sum alpha_be a_c, sum alpha_be a_c r_c^2
   Kokkos::parallel_reduce(
-      "lagremap::diagnostics::inner_radius", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_nodes),
-      KOKKOS_LAMBDA(const Index n, double& acc) {
-        const double r = math::sqrt(x_n(n, 0) * x_n(n, 0) + x_n(n, 1) * x_n(n, 1));
-        acc = r < acc ? r : acc;
+      "lagremap::diagnostics::shell_mean_radius", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
+      KOKKOS_LAMBDA(const Index c, SumArray<2>& acc) {
+        if (!owned(c)) return;
+        const double a = alpha(c, 0) * area(c);
+        acc.v[0] += a;
+        acc.v[1] += a * (x_c(c, 0) * x_c(c, 0) + x_c(c, 1) * x_c(c, 1));
       },
-      Kokkos::Min<double>(radius));
-  return parallel::min(radius);
+      Kokkos::Sum<SumArray<2>>(be_moments));
+  parallel::sum(be_moments.v, 2);
+  const double mean_r2 = be_moments.v[1] / be_moments.v[0];
+  double gas_inside = 0.0;
+  Kokkos::parallel_reduce(
+      "lagremap::diagnostics::shell_inner_gas", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
+      KOKKOS_LAMBDA(const Index c, double& acc) {
+        const double r2 = x_c(c, 0) * x_c(c, 0) + x_c(c, 1) * x_c(c, 1);
+        if (owned(c) && r2 < mean_r2) acc += alpha(c, 1) * area(c);
+      },
+      gas_inside);
+  return std::sqrt(parallel::sum(gas_inside) / kPi);
+}
+
+// Beryllium area in the slab's plane, sum alpha_be v / dz (remap fields).
+double beAreaOf(const FinalFields& fields) {
+  double area = 0.0;
+  for (Index c = 0; c < Index(fields.vol.extent(0)); ++c) {
+    const double dz = fields.mesh.x_n(fields.mesh.cell_nodes(c, 4), 2) -
+                      fields.mesh.x_n(fields.mesh.cell_nodes(c, 0), 2);
+    area += fields.alpha(c, 0) * fields.vol(c) / dz;
+  }
+  return area;
 }
 
 std::vector<Check> finishShell(const Config& config, const FinalFields& fields,
                                const std::string& out_dir) {
+  const bool remap = config.remapMode();
   // The stopping inner radius: the smallest one of the probe's history.
   double inner_min = INFINITY, stop_time = NAN;
   for (const auto& [t, r] : fields.probe) {
@@ -95,15 +195,23 @@ std::vector<Check> finishShell(const Config& config, const FinalFields& fields,
       stop_time = t;
     }
   }
-  // The shell is incompressible to first order: the outer radius follows from
-  // the inner one by conservation of the shell's area, r_o^2 - r_i^2 = const.
+  // Lagrange: the shell is incompressible to first order, so the outer radius
+  // follows from the inner one by conservation of the shell's area,
+  // r_o^2 - r_i^2 = const. Remap: the same with the beryllium area measured
+  // at t_end from the volume fractions (the probe holds one number per step;
+  // the area changes by the elastic compression only, ~1e-3, i.e. ~0.02 mm
+  // on the outer radius).
   const double ri0 = config.real("shell.inner_radius"), ro0 = config.real("shell.outer_radius");
-  const double outer_at_stop = std::sqrt(inner_min * inner_min + ro0 * ro0 - ri0 * ri0);
+  const double shell_area = remap ? beAreaOf(fields) / kPi : ro0 * ro0 - ri0 * ri0;
+  const double outer_at_stop = std::sqrt(inner_min * inner_min + shell_area);
   std::ofstream csv;
   if (!out_dir.empty()) csv.open(out_dir + "/shell_radii.csv");
-  csv << "t,inner_radius,outer_radius_incompressible\n" << std::setprecision(10);
+  csv << "t,inner_radius,outer_radius_incompressible" << (remap ? ",outer_radius_be_area\n" : "\n")
+      << std::setprecision(10);
   for (const auto& [t, r] : fields.probe) {
-    csv << t << ',' << r << ',' << std::sqrt(r * r + ro0 * ro0 - ri0 * ri0) << '\n';
+    csv << t << ',' << r << ',' << std::sqrt(r * r + ro0 * ro0 - ri0 * ri0);
+    if (remap) csv << ',' << std::sqrt(r * r + shell_area);
+    csv << '\n';
   }
   std::ofstream cells;
   if (!out_dir.empty()) cells.open(out_dir + "/shell_mesh_z0.csv");
@@ -116,17 +224,43 @@ std::vector<Check> finishShell(const Config& config, const FinalFields& fields,
     }
     cells << fields.rho(c) << '\n';
   }
-  // Circularity of the inner surface: spread of the inner-surface node radii
-  // (nodes of the first radial column; the shell must stay a circle).
+  // Roundness of the inner surface at t_end: (max - min) / min of its radius.
+  // Lagrange: the inner-surface nodes (first radial column of the polar mesh).
+  // Remap: where the beryllium volume fraction first rises through 1/2 along
+  // 32 rays from the centre (also written with the outer crossings).
   double inner_lo = INFINITY, inner_hi = 0.0;
-  const int nx = fields.nx;
-  for (Index c = 0; c < n_cells; ++c) {
-    if (c % nx != 0) continue;  // cells touching the inner surface (i = 0)
-    for (int p : {0, 3}) {      // VTK nodes 0 and 3 lie on the r = Ri side
-      const Index node = fields.mesh.cell_nodes(c, p);
-      const double r = std::hypot(fields.mesh.x_n(node, 0), fields.mesh.x_n(node, 1));
-      inner_lo = std::min(inner_lo, r);
-      inner_hi = std::max(inner_hi, r);
+  if (remap) {
+    std::ofstream contour;
+    if (!out_dir.empty()) contour.open(out_dir + "/shell_contour.csv");
+    contour << "theta,inner_radius,outer_radius\n" << std::setprecision(10);
+    const double z_mid = 0.5 * config.real("geometry.thickness");
+    constexpr int kRays = 32;
+    for (int ray = 0; ray < kRays; ++ray) {
+      const double theta = 2.0 * kPi * (ray + 0.5) / kRays;
+      const auto crossings =
+          alphaCrossingsAlongRay(fields, 0, {0, 0, z_mid}, {std::cos(theta), std::sin(theta), 0});
+      double inner = NAN, outer = NAN;
+      for (const AlphaCrossing& crossing : crossings) {
+        if (std::isnan(inner) && crossing.rising) inner = crossing.distance;
+        if (!std::isnan(inner) && !crossing.rising) {
+          outer = crossing.distance;
+          break;
+        }
+      }
+      contour << theta << ',' << inner << ',' << outer << '\n';
+      inner_lo = std::isnan(inner) ? NAN : std::min(inner_lo, inner);
+      inner_hi = std::isnan(inner) ? NAN : std::max(inner_hi, inner);
+    }
+  } else {
+    const int nx = fields.nx;
+    for (Index c = 0; c < n_cells; ++c) {
+      if (c % nx != 0) continue;  // cells touching the inner surface (i = 0)
+      for (int p : {0, 3}) {      // VTK nodes 0 and 3 lie on the r = Ri side
+        const Index node = fields.mesh.cell_nodes(c, p);
+        const double r = std::hypot(fields.mesh.x_n(node, 0), fields.mesh.x_n(node, 1));
+        inner_lo = std::min(inner_lo, r);
+        inner_hi = std::max(inner_hi, r);
+      }
     }
   }
   const double tol = config.real("check.radius_tolerance");
@@ -134,11 +268,17 @@ std::vector<Check> finishShell(const Config& config, const FinalFields& fields,
   // elastically): the smallest radius is reached before t_end, not at it.
   const double stop_fraction = stop_time / config.real("t_end");
   return {{"stopping_inner_radius", inner_min, config.real("check.inner_radius"), tol,
-           "smallest inner radius over the run (Howell & Ball 50 mm; paper 51 mm)"},
+           remap ? "smallest equal-area radius of the gas inside the shell over the run "
+                   "(Howell & Ball 50 mm; paper 51 mm)"
+                 : "smallest inner radius over the run (Howell & Ball 50 mm; paper 51 mm)"},
           {"stopping_outer_radius", outer_at_stop, config.real("check.outer_radius"), tol,
-           "outer radius when the inner one stops, from the shell's area (H&B 78.1 mm)"},
-          {"inner_circularity", (inner_hi - inner_lo) / inner_lo, 0.0, 0.01,
-           "(max - min) / min of the inner-surface radius at t_end: the shell stays round"},
+           remap ? "outer radius when the inner one stops, from the beryllium area at t_end "
+                   "(H&B 78.1 mm; paper 79 mm)"
+                 : "outer radius when the inner one stops, from the shell's area (H&B 78.1 mm)"},
+          {"inner_circularity", (inner_hi - inner_lo) / inner_lo, 0.0, remap ? 0.05 : 0.01,
+           remap ? "(max - min) / min of the alpha = 1/2 inner radius along 32 rays at t_end"
+                 : "(max - min) / min of the inner-surface radius at t_end: the shell stays "
+                   "round"},
           {"stop_time_fraction", stop_fraction, 0.9, 0.095,
            "time of the smallest inner radius / t_end: the shell stops (and rebounds) "
            "within the run, in [0.805, 0.995]"}};
@@ -148,7 +288,7 @@ std::vector<Check> finishShell(const Config& config, const FinalFields& fields,
 
 extern const Problem kShellProblem = {
     "shell",
-    "collapse of a thick beryllium shell (hypo-elastic, polar mesh of the quarter annulus)",
+    "collapse of a thick beryllium shell (hypo-elastic; polar mesh, or in gas in remap mode)",
     declareShell,
     setupShell,
     finishShell,

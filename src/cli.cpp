@@ -147,6 +147,11 @@ int runCommandLine(int argc, char* argv[]) {
     options.mode = mode;
     options.output_dir = output.empty() ? "out/" + options.problem : output;
     options.output_times = output_times;
+    if (app.count("--output-times") == 0) {
+      for (double t_out : problem.default_output_times) {
+        if (t_out <= options.config.real("t_end")) options.output_times.push_back(t_out);
+      }
+    }
     options.output_every = output_every;
     options.quiet = quiet;
     options.checkpoint_every = checkpoint_every;

@@ -84,6 +84,8 @@ struct Problem {
   // in FinalFields::probe and written to probe.csv with this column name.
   double (*probe)(const Mesh& mesh, const State& state) = nullptr;
   const char* probe_name = nullptr;
+  // Snapshot times when the command line gives none (PROBLEMS.md), those up to t_end.
+  std::vector<double> default_output_times = {};
 };
 
 const std::vector<Problem>& problemRegistry();
@@ -94,9 +96,9 @@ const Problem& findProblem(const std::string& name);
 // Remap mode: the checks whose reference is the same in both modes (an exact
 // solution) get it as their lagrange_reference; lagrange mode: nothing.
 void setModeIndependentReferences(const Config& config, std::vector<Check>& checks);
-// Throws ConfigError when the keys are declared for remap mode: the problem's
-// remap set-up (`what`, e.g. its gas-filled box) does not exist yet.
-void refuseRemapMode(const Config& config, const std::string& problem, const std::string& what);
+// Throws ConfigError when the keys are declared for lagrange mode: the
+// problem exists only in remap mode, for the reason `why`.
+void refuseLagrangeMode(const Config& config, const std::string& problem, const std::string& why);
 void declareMeshKeys(Config& config, int nx, int ny, int nz);
 void declareBoundaryKeys(Config& config, const std::array<const char*, kNumSides>& defaults);
 // <prefix>.rho0, a0, Gamma0, s, mu, yield_stress: a Mie-Gruneisen,
@@ -146,5 +148,16 @@ void fillMaterialRegions(ProblemSetup& setup, const MaterialRegions& regions,
 // on the row of cells nearest to the line y = y_line, z = mid-thickness
 // (linear interpolation between cell centroids), or NAN if it never does.
 double materialFrontX(const FinalFields& fields, int material, double y_line);
+// Where the volume fraction of `material` crosses 1/2 along the ray
+// origin + s direction (s >= 0, direction in the x-y plane) through a slab one
+// cell thick on a uniform block mesh: the cell values are interpolated
+// bilinearly between centroids (constant beyond the outer ones) and sampled
+// every 1/8 of a cell until the ray leaves the block, in order of s.
+struct AlphaCrossing {
+  double distance;  // s at the crossing (linear between samples)
+  bool rising;      // alpha increases through 1/2 along the ray
+};
+std::vector<AlphaCrossing> alphaCrossingsAlongRay(const FinalFields& fields, int material,
+                                                  const Vec3& origin, const Vec3& direction);
 
 }  // namespace lagremap

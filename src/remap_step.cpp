@@ -41,6 +41,7 @@ RemapStep::RemapStep(Mesh& mesh, State& state, const RemapControls& controls, Ph
   Kokkos::deep_copy(x_target_, mesh.x_n);
   density_ = MatRealView("lagremap::remap::density", n_cells, layout_.n_variables);
   gradient_ = DeviceView<Real** [3]>("lagremap::remap::gradient", n_cells, layout_.n_variables);
+  reach_ = RealView("lagremap::remap::reach", n_cells);
   swept_ = allocateSweptFaces(mesh);
   m_c_saved_ = RealView("lagremap::remap::m_c_saved", n_cells);
   alpha_ck_saved_ = MatRealView("lagremap::remap::alpha_ck_saved", n_cells, state.n_materials);
@@ -55,9 +56,9 @@ RemapBoundaryFlux RemapStep::apply() {
     Kokkos::deep_copy(alpha_ck_saved_, state_.alpha_ck);
     Kokkos::deep_copy(m_ck_saved_, state_.m_ck);
     remapDensities(state_, layout_, density_);
-    remapGradients(mesh_, state_, layout_, controls_, density_, gradient_);
+    remapGradients(mesh_, state_, layout_, controls_, density_, gradient_, reach_);
     computeSweptFaces(mesh_, mesh_.x_n, x_target_, swept_);
-    crossed = remapUpdate(mesh_, state_, layout_, controls_, density_, gradient_, swept_);
+    crossed = remapUpdate(mesh_, state_, layout_, controls_, density_, gradient_, reach_, swept_);
     Kokkos::deep_copy(mesh_.x_n, x_target_);
   }
   if (halo_) {  // ghost cells: their owners' remapped state (DESIGN §6)

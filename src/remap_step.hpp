@@ -40,6 +40,7 @@ class RemapStep {
   Vec3View x_target_;
   MatRealView density_;              // (cell, variable) per unit volume
   DeviceView<Real** [3]> gradient_;  // (cell, variable, xyz), limited
+  RealView reach_;                   // largest centroid-vertex distance of each Lagrangian cell
   SweptFaces swept_;
   RealView m_c_saved_;
   MatRealView alpha_ck_saved_, m_ck_saved_;

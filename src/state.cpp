@@ -66,6 +66,8 @@ void allocateMaterialState(State& s, Index n_cells, int n_materials, bool has_so
   s.S_ck0 = tensors("S_ck0");
   s.B_ck = tensors("B_ck");
   s.B_ck0 = tensors("B_ck0");
+  s.n_ck = MatVec3View("lagremap::state::n_ck", has_solids && n_materials > 1 ? n_cells : 0,
+                       n_materials);
 }
 
 namespace {
@@ -87,6 +89,7 @@ std::vector<FieldRef> evolvedCellFields(const State& s) {
   addIfAllocated(list, "e_ck", s.e_ck);
   addIfAllocated(list, "S_ck", s.S_ck);
   addIfAllocated(list, "B_ck", s.B_ck);
+  addIfAllocated(list, "n_ck", s.n_ck);  // interface normals of the last remap
   return list;
 }
 

@@ -35,6 +35,11 @@ struct State {
   // Compressibility weight alpha^k / (rho^k a_k^2) (derived): a mixed cell's
   // volume change is shared among its materials in proportion to it.
   MatRealView w_ck;
+  // Unit normal out of material k's interface, -grad alpha^k / |grad alpha^k|
+  // on the mesh of the last remap (0 where alpha^k is uniform): a solid's
+  // normal stress across it is what pressure relaxation equalises. Allocated
+  // for multi-material runs with solids only.
+  MatVec3View n_ck;
 
   // Derived at every stage from the node positions (computeGeometry); the
   // mixture rules of DESIGN §3 give p = sum alpha^k p^k, S = sum alpha^k S^k,

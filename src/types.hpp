@@ -26,6 +26,7 @@ using CellNodesView = DeviceView<Index* [8]>;  // VTK_HEXAHEDRON node order
 using CellFacesView = DeviceView<Index* [6]>;  // per hex face (see kernels/hex.hpp)
 using MatRealView = DeviceView<Real**>;        // (cell, material)
 using MatSym6View = DeviceView<Real** [6]>;    // (cell, material, Sym6 component)
+using MatVec3View = DeviceView<Real** [3]>;    // (cell, material, x y z)
 
 constexpr int kNodesPerCell = 8;
 constexpr int kFacesPerCell = 6;

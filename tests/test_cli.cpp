@@ -35,7 +35,8 @@ TEST(CommandLine, MalformedInputGivesExitCodeTwoAndOneLine) {
   const std::vector<BadInput> table = {
       {"", "--problem is required"},
       {"--problem nope", "unknown problem 'nope'"},
-      {"--problem shell --mode remap", "shell: remap mode"},
+      {"--problem ball", "ball: lagrange mode is not available (the ball and the plate"},
+      {"--problem ball --mode lagrange --print-config", "use --mode remap"},
       {"--problem sod --mode remap --set remap.beta=3", "remap.beta must be in [1, 2]"},
       {"--problem sod --scale -1", "--scale"},
       {"--problem sod --scale abc", "--scale"},
@@ -181,6 +182,29 @@ TEST(CommandLine, SnapshotsAtRequestedTimes) {
   std::stringstream text;
   text << series.rdbuf();
   for (const char* time : {"\"0\"", "\"0.05\"", "\"0.1\"", "\"0.2\""}) {
+    EXPECT_NE(text.str().find(std::string("Value=") + time), std::string::npos) << time;
+  }
+  std::filesystem::remove_all(dir);
+}
+
+// A problem's own snapshot times when the command line gives none: `ball`
+// writes PROBLEMS.md §6's every 0.5 us (those up to the run's t_end).
+TEST(CommandLine, ProblemsOwnSnapshotTimes) {
+  const std::string dir = testing::scratchDir("cli_default_snapshots");
+  const auto result = runLagremap(
+      "--problem ball --mode remap --scale 0.25 --set geometry.thickness=1e-4 --t-end 1.2e-6 "
+      "--quiet --output " +
+      dir);
+  ASSERT_TRUE(result.exit_code == 0 || result.exit_code == 1) << result.output;
+  for (const char* file : {"fields_00000.h5", "fields_00001.h5", "fields_00002.h5",
+                           "fields_00003.h5", "ball_centroid.csv", "ball_axis.csv"}) {
+    EXPECT_TRUE(std::filesystem::exists(dir + "/" + file)) << file;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir + "/fields_00004.h5"));
+  std::ifstream series(dir + "/fields.xmf");
+  std::stringstream text;
+  text << series.rdbuf();
+  for (const char* time : {"\"5e-07\"", "\"1e-06\"", "\"1.2e-06\""}) {
     EXPECT_NE(text.str().find(std::string("Value=") + time), std::string::npos) << time;
   }
   std::filesystem::remove_all(dir);
