@@ -92,16 +92,12 @@ ProblemSetup setupBall(const Config& config) {
   const BallGeometry g = readBallGeometry(config);
   const double thickness = config.real("geometry.thickness");
   const double p0 = config.real("al.p0");
-  MaterialParams gas;
-  gas.gamma = config.real("gas.gamma");
-  const double gas_rho = config.real("gas.rho"), gas_p = config.real("gas.p");
+  const AmbientGas gas = readAmbientGas(config, "ball");
   if (!(thickness > 0 && p0 >= 0)) throw ConfigError("ball: need thickness > 0 and al.p0 >= 0");
-  if (!(gas_rho > 0 && gas_p > 0 && gas.gamma > 1)) {
-    throw ConfigError("ball: gas.rho, gas.p must be > 0 and gas.gamma > 1");
-  }
   CellShapes shapes;
-  ProblemSetup setup = setupBlock(config, {g.domain_lo_x, g.domain_lo_y, 0},
-                                  {g.domain_hi_x, g.domain_hi_y, thickness}, {al, al, gas}, shapes);
+  ProblemSetup setup =
+      setupBlock(config, {g.domain_lo_x, g.domain_lo_y, 0},
+                 {g.domain_hi_x, g.domain_hi_y, thickness}, {al, al, gas.material}, shapes);
   MaterialRegions regions;
   regions.material_at = [=](const Vec3& x) {
     if (std::hypot(x.x - g.x, x.y - g.y) <= g.radius) return kBall;
@@ -111,8 +107,8 @@ ProblemSetup setupBall(const Config& config) {
     return kGas;
   };
   const double e_al = p0 / (al.rho0 * al.Gamma0);  // Mie-Gruneisen at rho = rho0
-  regions.rho = {al.rho0, al.rho0, gas_rho};
-  regions.e = {e_al, e_al, gas_p / ((gas.gamma - 1.0) * gas_rho)};
+  regions.rho = {al.rho0, al.rho0, gas.rho};
+  regions.e = {e_al, e_al, gas.e};
   regions.velocity = [=](int material, const Vec3&) {
     return material == kBall ? Vec3{g.vx, 0, 0} : Vec3{0, 0, 0};
   };

@@ -65,26 +65,21 @@ ProblemSetup setupBeam(const Config& config) {
   };
   CellShapes shapes;
   if (config.remapMode()) {
-    MaterialParams gas;
-    gas.gamma = config.real("gas.gamma");
+    const AmbientGas gas = readAmbientGas(config, "beam");
     const double domain_length = config.real("domain.length");
     const double domain_height = config.real("domain.height");
-    const double gas_rho = config.real("gas.rho"), gas_p = config.real("gas.p");
     if (!(domain_length > length && domain_height > height)) {
       throw ConfigError("beam: the remap domain must contain the plate");
     }
-    if (!(gas_rho > 0 && gas_p > 0 && gas.gamma > 1)) {
-      throw ConfigError("beam: gas.rho, gas.p must be > 0 and gas.gamma > 1");
-    }
     ProblemSetup setup =
         setupBlock(config, {-domain_length / 2, -domain_height / 2, -depth / 2},
-                   {domain_length / 2, domain_height / 2, depth / 2}, {be, gas}, shapes);
+                   {domain_length / 2, domain_height / 2, depth / 2}, {be, gas.material}, shapes);
     MaterialRegions regions;
     regions.material_at = [=](const Vec3& x) {
       return std::abs(x.x) <= 0.5 * length && std::abs(x.y) <= 0.5 * height ? 0 : 1;
     };
-    regions.rho = {be.rho0, gas_rho};
-    regions.e = {0.0, gas_p / ((gas.gamma - 1.0) * gas_rho)};
+    regions.rho = {be.rho0, gas.rho};
+    regions.e = {0.0, gas.e};
     regions.velocity = [=](int material, const Vec3& x) {
       return material == 0 ? modeVelocity(x) : Vec3{0, 0, 0};
     };

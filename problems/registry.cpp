@@ -137,6 +137,18 @@ double sideMeanCentroid(const Mesh& mesh, const State& state, int side, int axis
       KOKKOS_LAMBDA(const Index c) { return x_c(c, axis); });
 }
 
+AmbientGas readAmbientGas(const Config& config, const std::string& problem) {
+  AmbientGas gas;
+  gas.material.gamma = config.real("gas.gamma");
+  gas.rho = config.real("gas.rho");
+  const double p = config.real("gas.p");
+  if (!(gas.rho > 0 && p > 0 && gas.material.gamma > 1)) {
+    throw ConfigError(problem + ": gas.rho, gas.p must be > 0 and gas.gamma > 1");
+  }
+  gas.e = p / ((gas.material.gamma - 1.0) * gas.rho);
+  return gas;
+}
+
 void declareTractionKeys(Config& config, int side, const SymMat3& stress) {
   const std::string prefix = std::string("bc.") + sideName(side) + ".sigma_";
   const double values[6] = {stress.xx, stress.yy, stress.zz, stress.xy, stress.yz, stress.xz};

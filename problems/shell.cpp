@@ -72,24 +72,20 @@ ProblemSetup setupShell(const Config& config) {
   const bool howell_ball = config.text("shell.profile") == "howell_ball";
   const double e0 = p0 / (be.rho0 * be.Gamma0);  // Mie-Gruneisen at rho = rho0
   if (config.remapMode()) {
-    MaterialParams gas;
-    gas.gamma = config.real("gas.gamma");
+    const AmbientGas gas = readAmbientGas(config, "shell");
     const double half_width = config.real("domain.half_width");
-    const double gas_rho = config.real("gas.rho"), gas_p = config.real("gas.p");
     if (!(half_width > ro)) throw ConfigError("shell: the remap domain must contain the shell");
-    if (!(gas_rho > 0 && gas_p > 0 && gas.gamma > 1)) {
-      throw ConfigError("shell: gas.rho, gas.p must be > 0 and gas.gamma > 1");
-    }
     CellShapes shapes;
-    ProblemSetup setup = setupBlock(config, {-half_width, -half_width, 0},
-                                    {half_width, half_width, thickness}, {be, gas}, shapes);
+    ProblemSetup setup =
+        setupBlock(config, {-half_width, -half_width, 0}, {half_width, half_width, thickness},
+                   {be, gas.material}, shapes);
     MaterialRegions regions;
     regions.material_at = [=](const Vec3& x) {
       const double r = std::hypot(x.x, x.y);
       return r >= ri && r <= ro ? 0 : 1;
     };
-    regions.rho = {be.rho0, gas_rho};
-    regions.e = {e0, gas_p / ((gas.gamma - 1.0) * gas_rho)};
+    regions.rho = {be.rho0, gas.rho};
+    regions.e = {e0, gas.e};
     regions.velocity = [=](int material, const Vec3& x) {
       return material == 0 ? shellVelocity(x, ri, v0, howell_ball) : Vec3{0, 0, 0};
     };

@@ -56,26 +56,21 @@ ProblemSetup setupTaylor(const Config& config) {
   CellShapes shapes;
   const double vx = config.real("bar.vx");
   if (config.remapMode()) {
-    MaterialParams gas;
-    gas.gamma = config.real("gas.gamma");
+    const AmbientGas gas = readAmbientGas(config, "taylor");
     const double domain_length = config.real("domain.length");
     const double domain_height = config.real("domain.height");
-    const double gas_rho = config.real("gas.rho"), gas_p = config.real("gas.p");
     if (!(domain_length > length && domain_height > height)) {
       throw ConfigError("taylor: the remap domain must contain the bar");
     }
-    if (!(gas_rho > 0 && gas_p > 0 && gas.gamma > 1)) {
-      throw ConfigError("taylor: gas.rho, gas.p must be > 0 and gas.gamma > 1");
-    }
     ProblemSetup setup =
         setupBlock(config, {0, -domain_height / 2, 0},
-                   {domain_length, domain_height / 2, thickness}, {al, gas}, shapes);
+                   {domain_length, domain_height / 2, thickness}, {al, gas.material}, shapes);
     MaterialRegions regions;
     regions.material_at = [=](const Vec3& x) {
       return x.x < length && std::abs(x.y) < 0.5 * height ? 0 : 1;
     };
-    regions.rho = {al.rho0, gas_rho};
-    regions.e = {0.0, gas_p / ((gas.gamma - 1.0) * gas_rho)};
+    regions.rho = {al.rho0, gas.rho};
+    regions.e = {0.0, gas.e};
     regions.velocity = [=](int material, const Vec3&) {
       return material == 0 ? Vec3{vx, 0, 0} : Vec3{0, 0, 0};
     };

@@ -72,22 +72,17 @@ ProblemSetup setupWilkins(const Config& config) {
   const double v_flyer = config.real("flyer.vx");
   CellShapes shapes;
   if (config.remapMode()) {
-    MaterialParams gas;
-    gas.gamma = config.real("gas.gamma");
-    const double gas_rho = config.real("gas.rho"), gas_p = config.real("gas.p");
-    if (!(gas_rho > 0 && gas_p > 0 && gas.gamma > 1)) {
-      throw ConfigError("wilkins: gas.rho, gas.p must be > 0 and gas.gamma > 1");
-    }
+    const AmbientGas gas = readAmbientGas(config, "wilkins");
     if (!(x_min < flyer_min)) {
       throw ConfigError("wilkins: remap mode needs gas behind the flyer (x_min < flyer_min)");
     }
     // Aluminium is material 0 (the checks read it), the gas material 1.
     ProblemSetup setup =
-        setupBlock(config, {x_min, 0, 0}, {x_max, width, width}, {al, gas}, shapes);
+        setupBlock(config, {x_min, 0, 0}, {x_max, width, width}, {al, gas.material}, shapes);
     MaterialRegions regions;
     regions.material_at = [=](const Vec3& x) { return x.x < flyer_min ? 1 : 0; };
-    regions.rho = {al.rho0, gas_rho};
-    regions.e = {e0, gas_p / ((gas.gamma - 1.0) * gas_rho)};
+    regions.rho = {al.rho0, gas.rho};
+    regions.e = {e0, gas.e};
     regions.velocity = [=](int material, const Vec3& x) {
       return material == 0 && x.x < flyer_max ? Vec3{v_flyer, 0, 0} : Vec3{0, 0, 0};
     };

@@ -99,6 +99,13 @@ void setModeIndependentReferences(const Config& config, std::vector<Check>& chec
 // Throws ConfigError when the keys are declared for lagrange mode: the
 // problem exists only in remap mode, for the reason `why`.
 void refuseLagrangeMode(const Config& config, const std::string& problem, const std::string& why);
+// The gas round the bodies of a remap set-up: gas.gamma, gas.rho, gas.p (an
+// ideal gas at rest); throws ConfigError naming the problem for impossible values.
+struct AmbientGas {
+  MaterialParams material;
+  double rho = 0.0, e = 0.0;  // density, specific internal energy p / ((gamma - 1) rho)
+};
+AmbientGas readAmbientGas(const Config& config, const std::string& problem);
 void declareMeshKeys(Config& config, int nx, int ny, int nz);
 void declareBoundaryKeys(Config& config, const std::array<const char*, kNumSides>& defaults);
 // <prefix>.rho0, a0, Gamma0, s, mu, yield_stress: a Mie-Gruneisen,
