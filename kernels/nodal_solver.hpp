@@ -148,7 +148,24 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
           // 5e-5 with either alone; README, Numerical method)
           const double phi_v = solid ? projectedLimiter<true, true>(dv_nb, dv_node, length2)
                                      : projectedLimiter<false, true>(dv_nb, dv_node, length2);
-          for (int p = 0; p < 8; ++p) v_node[p] += phi_v * dv_node[p];
+          // Acoustic bound: no node value further from the cell's than the
+          // cell's own sound speed, |dV| <= aL (and |d sigma|, |dp| <= rho aL^2
+          // below). A larger excursion is a discontinuity the linear profile
+          // cannot hold; the cell pays for it in its dissipation, of order
+          // (aL dt / h) |dV|^2 per unit mass, which a near-vacuum gas (the
+          // `ball`'s, aL ~ 2 m/s beside aluminium at 1000 m/s) cannot afford:
+          // it went to negative energy. Bounded so, the error stays below a
+          // CFL-number fraction of aL^2, i.e. of the gas's internal energy,
+          // and the node's velocity from a pressure excursion, |dp| / (rho
+          // aL), below aL. Inactive in smooth flow.
+          const double sound_speed = s.aL_c(c);
+          const double stress_scale = s.rho_c(c) * sound_speed * sound_speed;
+          double phi_acoustic_v = phi_v;
+          for (int p = 0; p < 8; ++p) {
+            const double excursion = phi_acoustic_v * math::sqrt(length2[p]);
+            if (excursion > sound_speed) phi_acoustic_v *= sound_speed / excursion;
+          }
+          for (int p = 0; p < 8; ++p) v_node[p] += phi_acoustic_v * dv_node[p];
           if (solid) {
             Vec3 grad_sigma[6];
             for (int i = 0; i < 6; ++i) grad_sigma[i] = inv * rhs_sigma[i];
@@ -156,7 +173,15 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
             SymMat3 gram;
             pullBack(grad_sigma, dsigma_nb, pulled, gram);
             for (int p = 0; p < 8; ++p) length2[p] = dot(offsets[p], gram * offsets[p]);
-            const double phi_sigma = projectedLimiter<true, false>(pulled, offsets, length2);
+            double phi_sigma = projectedLimiter<true, false>(pulled, offsets, length2);
+            for (int p = 0; p < 8; ++p) {  // acoustic bound (above), Frobenius norm
+              const Vec3& d = offsets[p];
+              const SymMat3 excursion{dot(grad_sigma[0], d), dot(grad_sigma[1], d),
+                                      dot(grad_sigma[2], d), dot(grad_sigma[3], d),
+                                      dot(grad_sigma[4], d), dot(grad_sigma[5], d)};
+              const double size = phi_sigma * norm(excursion);
+              if (size > stress_scale) phi_sigma *= stress_scale / size;
+            }
             for (int i = 0; i < 6; ++i) grad_sigma[i] = phi_sigma * grad_sigma[i];
             for (int p = 0; p < 8; ++p) {
               const Vec3& d = offsets[p];
@@ -175,7 +200,11 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
               dp_node[p] = dot(grad_p, offsets[p]);
               excursion.include(dp_node[p]);
             }
-            const double phi_p = cellLimiter(excursion, p_cell, pb, 1.0);
+            double phi_p = cellLimiter(excursion, p_cell, pb, 1.0);
+            for (int p = 0; p < 8; ++p) {  // acoustic bound (above)
+              const double size = phi_p * math::fabs(dp_node[p]);
+              if (size > stress_scale) phi_p *= stress_scale / size;
+            }
             for (int p = 0; p < 8; ++p) p_node[p] += phi_p * dp_node[p];
           }
         }
