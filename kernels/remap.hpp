@@ -56,9 +56,17 @@ struct RemapLayout {
   KOKKOS_INLINE_FUNCTION int momentum(int d) const { return 3 * n_materials + d; }
   KOKKOS_INLINE_FUNCTION int kinetic() const { return 3 * n_materials + 3; }
   // Columns with a reconstructed gradient. The gradient is that of the
-  // primitive variable of the column (primitiveValue): alpha^k, rho^k, e^k and
-  // the velocity; the kinetic energy and the tensors are not reconstructed.
-  KOKKOS_INLINE_FUNCTION bool reconstructed(int v) const { return v < momentum(0) + 3; }
+  // primitive variable of the column (primitiveValue): alpha^k, rho^k, e^k,
+  // the velocity and the tensors S^k or B^k; the kinetic energy is not
+  // reconstructed (it rides on the momentum's parcels).
+  KOKKOS_INLINE_FUNCTION bool reconstructed(int v) const { return v != kinetic(); }
+  // Material of tensor column v (v > kinetic()).
+  KOKKOS_INLINE_FUNCTION int tensorMaterial(int v) const {
+    int owner = 0;
+    for (int k = 0; k < n_materials; ++k)
+      if (tensor_column[k] >= 0 && tensor_column[k] <= v) owner = k;
+    return owner;
+  }
 
   // Primitive variable of column v in a cell from its densities q; false if
   // the cell has none (a material absent from it).
@@ -73,6 +81,12 @@ struct RemapLayout {
       const double alpha = q(c, alpha_column(k)), mass = q(c, n_materials + k);
       if (!(alpha > 0.0 && mass > 0.0)) return false;
       value = v < 2 * n_materials ? mass / alpha : q(c, v) / mass;
+      return true;
+    }
+    if (v > kinetic()) {  // alpha^k T^k -> T^k
+      const double alpha = q(c, alpha_column(tensorMaterial(v)));
+      if (!(alpha > 0.0)) return false;
+      value = q(c, v) / alpha;
       return true;
     }
     double rho = 0.0;  // bulk density
@@ -377,8 +391,11 @@ inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state,
               mass_flux_total += mass_flux;
               const int column = layout.tensor_column[m];
               if (column < 0) continue;
+              // alpha^k T^k: the volume's flux times T^k, second order in a
+              // pure upwind cell (as rho^k and e^k above).
               for (int i = 0; i < 6; ++i) {
-                integral[column + i] += alpha_flux * (q(up, column + i) / alpha_up);
+                integral[column + i] += alpha_flux * (q(up, column + i) / alpha_up) +
+                                        (pure_up ? alpha_up * slope(column + i) : 0.0);
               }
             }
             // Momentum and kinetic energy ride on the mass flux dm as a rigid

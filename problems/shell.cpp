@@ -21,6 +21,8 @@ namespace lagremap {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+// The paper's stopping radii, from its remap run (PROBLEMS.md §5).
+constexpr double kPaperInnerRadius = 0.051, kPaperOuterRadius = 0.079;
 
 void declareShell(Config& config) {
   const bool remap = config.remapMode();
@@ -263,7 +265,7 @@ std::vector<Check> finishShell(const Config& config, const FinalFields& fields,
   // The collapse must end inside the run (then the shell rebounds
   // elastically): the smallest radius is reached before t_end, not at it.
   const double stop_fraction = stop_time / config.real("t_end");
-  return {{"stopping_inner_radius", inner_min, config.real("check.inner_radius"), tol,
+  std::vector<Check> checks{{"stopping_inner_radius", inner_min, config.real("check.inner_radius"), tol,
            remap ? "smallest equal-area radius of the gas inside the shell over the run "
                    "(Howell & Ball 50 mm; paper 51 mm)"
                  : "smallest inner radius over the run (Howell & Ball 50 mm; paper 51 mm)"},
@@ -278,6 +280,12 @@ std::vector<Check> finishShell(const Config& config, const FinalFields& fields,
           {"stop_time_fraction", stop_fraction, 0.9, 0.095,
            "time of the smallest inner radius / t_end: the shell stops (and rebounds) "
            "within the run, in [0.805, 0.995]"}};
+  if (remap) {  // the paper's radii are its remap run's (PROBLEMS.md §5)
+    checks[0].paper = kPaperInnerRadius;
+    checks[1].paper = kPaperOuterRadius;
+  }
+  setModeIndependentReferences(config, checks);  // Howell & Ball's radii, in both modes
+  return checks;
 }
 
 }  // namespace
