@@ -265,21 +265,22 @@ std::vector<Check> finishShell(const Config& config, const FinalFields& fields,
   // The collapse must end inside the run (then the shell rebounds
   // elastically): the smallest radius is reached before t_end, not at it.
   const double stop_fraction = stop_time / config.real("t_end");
-  std::vector<Check> checks{{"stopping_inner_radius", inner_min, config.real("check.inner_radius"), tol,
-           remap ? "smallest equal-area radius of the gas inside the shell over the run "
-                   "(Howell & Ball 50 mm; paper 51 mm)"
-                 : "smallest inner radius over the run (Howell & Ball 50 mm; paper 51 mm)"},
-          {"stopping_outer_radius", outer_at_stop, config.real("check.outer_radius"), tol,
-           remap ? "outer radius when the inner one stops, from the beryllium area at t_end "
-                   "(H&B 78.1 mm; paper 79 mm)"
-                 : "outer radius when the inner one stops, from the shell's area (H&B 78.1 mm)"},
-          {"inner_circularity", (inner_hi - inner_lo) / inner_lo, 0.0, remap ? 0.05 : 0.01,
-           remap ? "(max - min) / min of the alpha = 1/2 inner radius along 32 rays at t_end"
-                 : "(max - min) / min of the inner-surface radius at t_end: the shell stays "
-                   "round"},
-          {"stop_time_fraction", stop_fraction, 0.9, 0.095,
-           "time of the smallest inner radius / t_end: the shell stops (and rebounds) "
-           "within the run, in [0.805, 0.995]"}};
+  std::vector<Check> checks{
+      {"stopping_inner_radius", inner_min, config.real("check.inner_radius"), tol,
+       remap ? "smallest equal-area radius of the gas inside the shell over the run "
+               "(Howell & Ball 50 mm; paper 51 mm)"
+             : "smallest inner radius over the run (Howell & Ball 50 mm; paper 51 mm)"},
+      {"stopping_outer_radius", outer_at_stop, config.real("check.outer_radius"), tol,
+       remap ? "outer radius when the inner one stops, from the beryllium area at t_end "
+               "(H&B 78.1 mm; paper 79 mm)"
+             : "outer radius when the inner one stops, from the shell's area (H&B 78.1 mm)"},
+      {"inner_circularity", (inner_hi - inner_lo) / inner_lo, 0.0, remap ? 0.05 : 0.01,
+       remap ? "(max - min) / min of the alpha = 1/2 inner radius along 32 rays at t_end"
+             : "(max - min) / min of the inner-surface radius at t_end: the shell stays "
+               "round"},
+      {"stop_time_fraction", stop_fraction, 0.9, 0.095,
+       "time of the smallest inner radius / t_end: the shell stops (and rebounds) "
+       "within the run, in [0.805, 0.995]"}};
   if (remap) {  // the paper's radii are its remap run's (PROBLEMS.md §5)
     checks[0].paper = kPaperInnerRadius;
     checks[1].paper = kPaperOuterRadius;

@@ -200,8 +200,8 @@ TEST(RemapProblems, BallInFreeFlightKeepsItsKineticEnergy) {
                       fields.v(c, 2) * fields.v(c, 2);
     final_state.kinetic += 0.5 * mass * v2;
   }
-  std::printf("ball in flight: kinetic %.9e -> %.9e J, internal %.6e -> %.6e J\n",
-              initial.kinetic, final_state.kinetic, initial.internal, final_state.internal);
+  std::printf("ball in flight: kinetic %.9e -> %.9e J, internal %.6e -> %.6e J\n", initial.kinetic,
+              final_state.kinetic, initial.internal, final_state.internal);
   // measured: 6e-9 of the kinetic energy turned into heat (the internal
   // energy up 1.2e-4 of itself)
   EXPECT_NEAR(final_state.kinetic / initial.kinetic, 1.0, 1e-7);
