@@ -1303,13 +1303,18 @@ CONTOUR_COLOURS = ["white", "magenta", "cyan", "yellow"]
 
 def maps_apply(run: Run) -> bool:
     """Field maps are drawn for 2D runs (a slab one cell thick, at least
-    4 x 4 cells), for multi-material runs (their interfaces are the point)
-    and for the beam (the paper shows its fields); not for 1D bars or 3D
-    blocks, whose slice says little."""
-    if run.problem == "beam" or isinstance(run.summary.get("interfaces"), dict):
+    4 x 4 cells), for multi-material runs with at least 4 x 4 cells in the
+    plane (their interfaces are the point) and for the beam (the paper shows
+    its fields); not for 1D bars (a strip of cells says less than
+    `wilkins_profiles.png`) or single-material 3D blocks, whose slice says
+    little."""
+    if run.problem == "beam":
         return True
     nx, ny, nz = (run.config_int(f"mesh.n{a}") for a in "xyz")
-    return nz == 1 and bool(nx) and bool(ny) and min(nx, ny) >= 4
+    planar = bool(nx) and bool(ny) and min(nx, ny) >= 4
+    if isinstance(run.summary.get("interfaces"), dict):
+        return planar
+    return nz == 1 and planar
 
 
 def final_snapshot(run: Run) -> Snapshot:
