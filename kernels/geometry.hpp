@@ -72,6 +72,10 @@ struct CellThermo {
 // squeezed to 3 rho0 in one stage. So no material changes its volume by more
 // than kMaxRelaxation of it per step; all are scaled alike (the sum stays 0).
 constexpr double kMaxRelaxation = 0.1;
+// No material of a mixed cell is squeezed below this fraction of its volume at
+// the start of the step (shareVolumeChange; updateMaterials stops its pdV work
+// there too).
+constexpr double kMinVolumeKept = 1e-3;
 KOKKOS_INLINE_FUNCTION double relaxationVolume(const State& s, Index c, int k) {
   const auto relaxes = [&](int m) {
     return s.alpha_ck0(c, m) > 0.0 && s.alpha_ck0(c, m) >= s.alpha_trace && s.w_ck0(c, m) > 0.0;
@@ -124,9 +128,8 @@ KOKKOS_INLINE_FUNCTION void shareVolumeChange(const State& s, Index c, double vo
                                    (s.w_ck0(c, k) / weight_sum) * (volume - volume_start) +
                                    relaxationVolume(s, c, k);
     // a material cannot be squeezed out: keep a sliver of its start volume
-    const double alpha = material_volume > 1e-3 * alpha_start * volume_start
-                             ? material_volume / volume
-                             : 1e-3 * alpha_start * volume_start / volume;
+    const double kept = kMinVolumeKept * alpha_start * volume_start;
+    const double alpha = (material_volume > kept ? material_volume : kept) / volume;
     s.alpha_ck(c, k) = alpha;
     alpha_sum += alpha;
   }
