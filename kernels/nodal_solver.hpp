@@ -160,11 +160,12 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
           // aL), below aL. Inactive in smooth flow.
           const double sound_speed = s.aL_c(c);
           const double stress_scale = s.rho_c(c) * sound_speed * sound_speed;
-          double phi_acoustic_v = phi_v;
-          for (int p = 0; p < 8; ++p) {
-            const double excursion = phi_acoustic_v * math::sqrt(length2[p]);
-            if (excursion > sound_speed) phi_acoustic_v *= sound_speed / excursion;
-          }
+          // (squared norms compared: one square root per cell)
+          double longest2 = 0.0;
+          for (int p = 0; p < 8; ++p) longest2 = length2[p] > longest2 ? length2[p] : longest2;
+          const double phi_acoustic_v = phi_v * phi_v * longest2 > sound_speed * sound_speed
+                                            ? sound_speed / math::sqrt(longest2)
+                                            : phi_v;
           for (int p = 0; p < 8; ++p) v_node[p] += phi_acoustic_v * dv_node[p];
           if (solid) {
             Vec3 grad_sigma[6];
@@ -174,13 +175,17 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
             pullBack(grad_sigma, dsigma_nb, pulled, gram);
             for (int p = 0; p < 8; ++p) length2[p] = dot(offsets[p], gram * offsets[p]);
             double phi_sigma = projectedLimiter<true, false>(pulled, offsets, length2);
-            for (int p = 0; p < 8; ++p) {  // acoustic bound (above), Frobenius norm
+            double largest2 = 0.0;  // acoustic bound (above), Frobenius norm
+            for (int p = 0; p < 8; ++p) {
               const Vec3& d = offsets[p];
               const SymMat3 excursion{dot(grad_sigma[0], d), dot(grad_sigma[1], d),
                                       dot(grad_sigma[2], d), dot(grad_sigma[3], d),
                                       dot(grad_sigma[4], d), dot(grad_sigma[5], d)};
-              const double size = phi_sigma * norm(excursion);
-              if (size > stress_scale) phi_sigma *= stress_scale / size;
+              const double size2 = ddot(excursion, excursion);
+              largest2 = size2 > largest2 ? size2 : largest2;
+            }
+            if (phi_sigma * phi_sigma * largest2 > stress_scale * stress_scale) {
+              phi_sigma = stress_scale / math::sqrt(largest2);
             }
             for (int i = 0; i < 6; ++i) grad_sigma[i] = phi_sigma * grad_sigma[i];
             for (int p = 0; p < 8; ++p) {
@@ -201,10 +206,12 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
               excursion.include(dp_node[p]);
             }
             double phi_p = cellLimiter(excursion, p_cell, pb, 1.0);
-            for (int p = 0; p < 8; ++p) {  // acoustic bound (above)
-              const double size = phi_p * math::fabs(dp_node[p]);
-              if (size > stress_scale) phi_p *= stress_scale / size;
+            double largest = 0.0;  // acoustic bound (above)
+            for (int p = 0; p < 8; ++p) {
+              const double size = math::fabs(dp_node[p]);
+              largest = size > largest ? size : largest;
             }
+            if (phi_p * largest > stress_scale) phi_p = stress_scale / largest;
             for (int p = 0; p < 8; ++p) p_node[p] += phi_p * dp_node[p];
           }
         }
