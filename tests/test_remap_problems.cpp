@@ -14,41 +14,12 @@
 namespace lagremap {
 namespace {
 
-// Each material's mass and the kinetic and internal energy of the problem's
-// initial state (the set-up rebuilt, m^k = alpha^k rho^k v as
-// initializeState makes it).
-struct InitialTotals {
-  std::vector<double> masses;
-  double kinetic = 0.0, internal = 0.0;
-};
-
-InitialTotals initialTotals(const RunOptions& options) {
-  const ProblemSetup setup = findProblem(options.problem).setup(options.config);
-  std::vector<double> volume;
-  std::vector<Vec3> centroid;
-  hostCellShapes(copyToHost(setup.mesh), volume, centroid);
-  const std::size_t n_materials = setup.materials.size();
-  InitialTotals totals;
-  totals.masses.assign(n_materials, 0.0);
-  for (std::size_t c = 0; c < volume.size(); ++c) {
-    double mass = 0.0;
-    for (std::size_t k = 0; k < n_materials; ++k) {
-      const std::size_t at = c * n_materials + k;
-      const double m_k = setup.cells.alpha_k[at] * setup.cells.rho_k[at] * volume[c];
-      totals.masses[k] += m_k;
-      totals.internal += m_k * setup.cells.e_k[at];
-      mass += m_k;
-    }
-    totals.kinetic += 0.5 * mass * dot(setup.cells.v[c], setup.cells.v[c]);
-  }
-  return totals;
-}
-
 // Runs the problem in remap mode and checks what every remap run must keep.
 RunResult runAndCheckRemap(const std::string& problem, const std::vector<std::string>& settings,
                            double scale) {
   const RunOptions options = testing::problemOptions(problem, settings, scale, "remap");
-  const std::vector<double> masses0 = initialTotals(options).masses;
+  const ProblemSetup setup = findProblem(problem).setup(options.config);
+  const std::vector<double> masses0 = testing::initialTotals(setup).mass_k;
   RunResult result = runProblem(options);
   EXPECT_FALSE(result.failed) << problem << ": " << result.failure;
   if (result.failed) return result;
@@ -174,21 +145,9 @@ TEST(RemapProblems, BallInFreeFlightKeepsItsKineticEnergy) {
   const RunResult result = runAndCheckRemap("ball", settings, 0.25);
   ASSERT_FALSE(result.failed);
   const RunOptions options = testing::problemOptions("ball", settings, 0.25, "remap");
-  const InitialTotals initial = initialTotals(options);
-  const FinalFields& fields = result.fields;
-  struct {
-    double kinetic = 0.0, internal = 0.0;
-  } final_state;
-  for (Index c = 0; c < Index(fields.rho.extent(0)); ++c) {
-    double mass = 0.0;
-    for (int k = 0; k < int(fields.m_k.extent(1)); ++k) {
-      mass += fields.m_k(c, k);
-      final_state.internal += fields.m_k(c, k) * fields.e_k(c, k);
-    }
-    const double v2 = fields.v(c, 0) * fields.v(c, 0) + fields.v(c, 1) * fields.v(c, 1) +
-                      fields.v(c, 2) * fields.v(c, 2);
-    final_state.kinetic += 0.5 * mass * v2;
-  }
+  const testing::StateTotals initial =
+      testing::initialTotals(findProblem("ball").setup(options.config));
+  const testing::StateTotals final_state = testing::finalTotals(result.fields);
   std::printf("ball in flight: kinetic %.9e -> %.9e J, internal %.6e -> %.6e J\n", initial.kinetic,
               final_state.kinetic, initial.internal, final_state.internal);
   // measured: 6e-9 of the kinetic energy turned into heat (the internal

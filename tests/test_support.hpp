@@ -94,4 +94,54 @@ inline RunOptions problemOptions(const std::string& problem,
   return options;
 }
 
+// Mass per material, x-momentum and energies of a run's state: of a problem's
+// initial cells (the set-up rebuilt, m^k = alpha^k rho^k v as initializeState
+// makes it) or of a run's final fields, summed independently of the audit.
+struct StateTotals {
+  std::vector<double> mass_k;
+  double momentum_x = 0.0, kinetic = 0.0, internal = 0.0;
+  double energy() const { return kinetic + internal; }
+};
+
+inline StateTotals initialTotals(const ProblemSetup& setup) {
+  std::vector<double> volume;
+  std::vector<Vec3> centroid;
+  hostCellShapes(copyToHost(setup.mesh), volume, centroid);
+  const std::size_t n_materials = setup.materials.size();
+  StateTotals totals;
+  totals.mass_k.assign(n_materials, 0.0);
+  for (std::size_t c = 0; c < volume.size(); ++c) {
+    double mass = 0.0;
+    for (std::size_t k = 0; k < n_materials; ++k) {
+      const std::size_t at = c * n_materials + k;
+      const double m = setup.cells.alpha_k[at] * setup.cells.rho_k[at] * volume[c];
+      totals.mass_k[k] += m;
+      totals.internal += m * setup.cells.e_k[at];
+      mass += m;
+    }
+    const Vec3 v = setup.cells.v[c];
+    totals.momentum_x += mass * v.x;
+    totals.kinetic += 0.5 * mass * dot(v, v);
+  }
+  return totals;
+}
+
+inline StateTotals finalTotals(const FinalFields& fields) {
+  const Index n_materials = Index(fields.m_k.extent(1));
+  StateTotals totals;
+  totals.mass_k.assign(std::size_t(n_materials), 0.0);
+  for (Index c = 0; c < Index(fields.m_k.extent(0)); ++c) {
+    double mass = 0.0;
+    for (Index k = 0; k < n_materials; ++k) {
+      totals.mass_k[std::size_t(k)] += fields.m_k(c, k);
+      totals.internal += fields.m_k(c, k) * fields.e_k(c, k);
+      mass += fields.m_k(c, k);
+    }
+    const Vec3 v{fields.v(c, 0), fields.v(c, 1), fields.v(c, 2)};
+    totals.momentum_x += mass * v.x;
+    totals.kinetic += 0.5 * mass * dot(v, v);
+  }
+  return totals;
+}
+
 }  // namespace lagremap::testing
