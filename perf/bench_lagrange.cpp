@@ -1,14 +1,17 @@
-// Google Benchmark drivers of the Lagrangian step (STYLE §12): each kernel of
-// DESIGN §3 and the whole step on the `sedov` blast at N^3 cells, advanced a
-// few dozen steps first so the shock exists (limiters and wall mirrors take
-// their nontrivial branches). Every iteration is timed with a Kokkos::Timer
-// closed by Kokkos::fence() (UseManualTime); rates are per cell.
+// Google Benchmark drivers of the Lagrange-Remap step (STYLE §12): each kernel
+// of the Lagrangian step (DESIGN §3) and of the remap (DESIGN §5: densities,
+// gradients, swept faces, fluxes and update), the whole remap and whole steps,
+// on the `sedov` blast at N^3 cells, advanced a few dozen steps first so the
+// shock exists (limiters and wall mirrors take their nontrivial branches).
+// Every iteration is timed with a Kokkos::Timer closed by Kokkos::fence()
+// (UseManualTime); rates are per cell.
 //
 //   bench_lagrange [--n=N] [--kokkos-threads=T] [--benchmark_...]
 //   LAGREMAP_BENCH_N=N (default 60), LAGREMAP_BENCH_WARMUP=steps (default 40)
 //
-// Nothing is allocated inside a timed region: the state and its warm snapshot
-// are allocated once in main(), and each benchmark starts from that snapshot.
+// Nothing is allocated inside a timed region: the state, its warm snapshot and
+// the remap kernels' work arrays are allocated once in main(), and each
+// benchmark starts from that snapshot.
 #include <benchmark/benchmark.h>
 
 #include <Kokkos_Core.hpp>
@@ -23,6 +26,8 @@
 #include "bench_support.hpp"
 #include "kernels/geometry.hpp"
 #include "kernels/nodal_solver.hpp"
+#include "kernels/remap.hpp"
+#include "kernels/swept_face.hpp"
 #include "src/floating_point.hpp"
 #include "src/lagrange_step.hpp"
 #include "src/problem.hpp"
@@ -131,6 +136,46 @@ class Bench {
 };
 
 std::unique_ptr<Bench> g_bench;
+
+// The inputs of the remap's kernels, one Lagrangian step off the warm state,
+// in the benchmark's own work arrays: RemapStep keeps its private, so they are
+// allocated as its constructor allocates them, with the same layout.
+struct RemapInputs {
+  explicit RemapInputs(Bench& b)
+      : layout(makeRemapLayout(b.state())),
+        x_target("bench::remap::x_target", b.nodes()),
+        density("bench::remap::density", b.cells(), layout.n_variables),
+        gradient("bench::remap::gradient", b.cells(), layout.n_variables),
+        reach("bench::remap::reach", b.cells()),
+        swept(allocateSweptFaces(b.mesh())) {}
+
+  // Untimed: the warm state, whose positions become the remap target (as
+  // BM_Remap's RemapStep keeps them), one Lagrangian step off it, then the
+  // kernels of RemapStep::apply() that precede the update. Densities,
+  // gradients and swept faces write nothing they or the earlier ones read, so
+  // each can be timed over and over on these inputs; the update overwrites
+  // the state the densities come from.
+  void prepare(Bench& b) {
+    b.restore();
+    Kokkos::deep_copy(x_target, b.mesh().x_n);
+    LagrangeStep lagrange(b.mesh(), b.state(), b.numerics(), b.timers());
+    lagrange.advance(b.dtBench(), 1);
+    remapDensities(b.state(), layout, density);
+    remapGradients(b.mesh(), b.state(), layout, controls, density, gradient, reach);
+    computeSweptFaces(b.mesh(), b.mesh().x_n, x_target, swept);
+    Kokkos::fence();
+  }
+
+  RemapControls controls;  // BM_Remap's: the defaults
+  RemapLayout layout;
+  Vec3View x_target;
+  MatRealView density;
+  DeviceView<Real** [3]> gradient;
+  RealView reach;
+  SweptFaces swept;
+};
+
+std::unique_ptr<RemapInputs> g_remap;
 
 // Per-cell rate of one kernel (kIsIterationInvariantRate: cells x iterations / manual time).
 void setCellRate(benchmark::State& state, const char* name) {
@@ -244,6 +289,55 @@ void BM_Remap(benchmark::State& state) {
   setCellRate(state, "cells_per_second");
 }
 
+// The kernels of RemapStep::apply() one at a time, on the inputs of BM_Remap's
+// first iteration (RemapInputs::prepare). Their sum is BM_Remap's time less
+// its copies (masses and fractions saved, the mesh put back), give or take the
+// later iterations of BM_Remap remapping a blast a few steps further on.
+void BM_RemapDensities(benchmark::State& state) {
+  Bench& b = *g_bench;
+  RemapInputs& r = *g_remap;
+  r.prepare(b);
+  timedLoop(state, [&] { remapDensities(b.state(), r.layout, r.density); });
+  setCellRate(state, "cells_per_second");
+}
+
+void BM_RemapGradients(benchmark::State& state) {
+  Bench& b = *g_bench;
+  RemapInputs& r = *g_remap;
+  r.prepare(b);
+  timedLoop(state, [&] {
+    remapGradients(b.mesh(), b.state(), r.layout, r.controls, r.density, r.gradient, r.reach);
+  });
+  setCellRate(state, "cells_per_second");
+}
+
+void BM_SweptFaces(benchmark::State& state) {
+  Bench& b = *g_bench;
+  RemapInputs& r = *g_remap;
+  r.prepare(b);
+  timedLoop(state, [&] { computeSweptFaces(b.mesh(), b.mesh().x_n, r.x_target, r.swept); });
+  setCellRate(state, "cells_per_second");
+}
+
+// Upwind fluxes, clean-up and kinetic-energy fix (one fused kernel). It
+// overwrites the masses, velocities and energies, so the inputs are prepared
+// again before every iteration: each one remaps the same Lagrangian state,
+// whatever the kernel comes to read.
+void BM_RemapFluxes(benchmark::State& state) {
+  Bench& b = *g_bench;
+  RemapInputs& r = *g_remap;
+  for (auto _ : state) {
+    r.prepare(b);  // untimed
+    Kokkos::Timer timer;
+    const RemapBoundaryFlux crossed = remapUpdate(b.mesh(), b.state(), r.layout, r.controls,
+                                                  r.density, r.gradient, r.reach, r.swept);
+    Kokkos::fence();
+    state.SetIterationTime(timer.seconds());
+    benchmark::DoNotOptimize(crossed.v[0]);
+  }
+  setCellRate(state, "cells_per_second");
+}
+
 // A whole Lagrange-Remap step as the driver takes it: advance, remap, geometry.
 void BM_LagrangeRemapStep(benchmark::State& state) {
   Bench& b = *g_bench;
@@ -285,6 +379,10 @@ void registerBenchmarks() {
   manual(benchmark::RegisterBenchmark("BM_FullStep/order1", BM_FullStep, 1));
   manual(benchmark::RegisterBenchmark("BM_FullStep/order2", BM_FullStep, 2));
   manual(benchmark::RegisterBenchmark("BM_Remap", BM_Remap));
+  manual(benchmark::RegisterBenchmark("BM_RemapDensities", BM_RemapDensities));
+  manual(benchmark::RegisterBenchmark("BM_RemapGradients", BM_RemapGradients));
+  manual(benchmark::RegisterBenchmark("BM_SweptFaces", BM_SweptFaces));
+  manual(benchmark::RegisterBenchmark("BM_RemapFluxes", BM_RemapFluxes));
   manual(benchmark::RegisterBenchmark("BM_LagrangeRemapStep/order2", BM_LagrangeRemapStep));
 }
 
@@ -308,6 +406,7 @@ int main(int argc, char* argv[]) {
 
   try {
     g_bench = std::make_unique<Bench>(n, warmup_steps);
+    g_remap = std::make_unique<RemapInputs>(*g_bench);
   } catch (const std::exception& error) {
     std::fprintf(stderr, "bench_lagrange: set-up failed: %s\n", error.what());
     return 1;
@@ -332,6 +431,7 @@ int main(int argc, char* argv[]) {
   registerBenchmarks();
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
-  g_bench.reset();  // the Views go before Kokkos::finalize
+  g_remap.reset();  // the Views go before Kokkos::finalize
+  g_bench.reset();
   return 0;
 }

@@ -6,9 +6,7 @@
 
 namespace lagremap {
 
-namespace {
-
-RemapLayout makeLayout(const State& state) {
+RemapLayout makeRemapLayout(const State& state) {
   if (state.n_materials > kMaxMaterials) {
     throw std::invalid_argument("remap: at most " + std::to_string(kMaxMaterials) + " materials");
   }
@@ -26,8 +24,6 @@ RemapLayout makeLayout(const State& state) {
   return layout;
 }
 
-}  // namespace
-
 RemapStep::RemapStep(Mesh& mesh, State& state, const RemapControls& controls, PhaseTimers& timers,
                      const Halo* halo)
     : mesh_(mesh),
@@ -35,7 +31,7 @@ RemapStep::RemapStep(Mesh& mesh, State& state, const RemapControls& controls, Ph
       controls_(controls),
       timers_(timers),
       halo_(halo),
-      layout_(makeLayout(state)) {
+      layout_(makeRemapLayout(state)) {
   const Index n_cells = mesh.n_cells;
   x_target_ = Vec3View("lagremap::remap::x_target", mesh.n_nodes);
   Kokkos::deep_copy(x_target_, mesh.x_n);

@@ -13,6 +13,11 @@
 
 namespace lagremap {
 
+// Columns of the remapped quantities for the state's materials (a tensor
+// block per solid); throws beyond kMaxMaterials materials. RemapStep's own
+// layout; public so that the benchmarks size their work arrays alike.
+RemapLayout makeRemapLayout(const State& state);
+
 class RemapStep {
  public:
   // Keeps the mesh's current node positions as the remap target.
