@@ -462,9 +462,14 @@ inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state,
         }
         for (int k = 0; k < n_materials; ++k) {
           if (k == main_material) continue;
-          if (alpha[k] <= alpha_floor || !(mass[k] > 0.0)) {
-            // A trace (or a round-off negative mass) is not a material state:
-            // its mass and energy join the main material, so nothing is lost.
+          // A trace (or a round-off negative mass) is not a material state:
+          // its mass and energy join the main material, so nothing is lost;
+          // but a trace whose negative energy (a solid fragment in tension)
+          // would take a gas below zero stays a material until it can.
+          const bool takes_gas_below_zero =
+              internal[k] < 0.0 && internal[main_material] + internal[k] < 0.0 &&
+              s.materials(main_material).eos == EosKind::IdealGas && alpha[k] > 0.0;
+          if ((alpha[k] <= alpha_floor && !takes_gas_below_zero) || !(mass[k] > 0.0)) {
             mass[main_material] += mass[k];
             internal[main_material] += internal[k];
             alpha[k] = 0.0;
