@@ -48,11 +48,25 @@ struct CellThermo {
 // so that to first order the P^k equalise within the step; its work is
 // -p^k relax^k (updateMaterials), irreversible. P^k = p^k for a fluid, and
 // p^k - f^k n^k . S^k . n^k for a solid, n^k the normal of its interface from
-// the last remap and f^k = max(0, 2 alpha^k - 1): a cell mostly of solid is
-// the surface layer of a body, whose normal stress -p + S_nn meets the gas
-// pressure across a sharp interface; a solid fragment or mist in gas meets
+// the last remap. A cell mostly of solid is the surface layer of a body,
+// whose normal stress -p + S_nn meets the gas pressure across a sharp
+// interface; a solid fragment or mist in gas (alpha^k < 1/2, f^k = 0) meets
 // it with its pressure alone (its deviator, driven by the cell's strain rate,
 // which is the gas's, means nothing there).
+// - A Neo-Hookean body (isSolidBody): f^k = 1, and its own normal stretch
+//   (its volume change against the cell's) enters its B (updateMaterials),
+//   so that its density and its deviator agree and P^k responds with the
+//   longitudinal modulus rho (a^2 + 4/3 a_T^2), which its weight w^k uses
+//   (cellThermo; with the bulk modulus the relaxation overshot 2.7-fold and
+//   diverged). Without the stretch, the `beam`'s surface layer carried the
+//   pressure of a solid stretched along the plate but none of its lateral
+//   contraction in its deviator (sigma_yy of 1e10 Pa where there is none),
+//   and the plate's bending stiffness was 0.70 EI against 0.95 EI in
+//   lagrange mode (half period 18.9 us; 16.8 us with the stretch).
+// - A hypo-elastic body keeps the cell's strain rate and f^k = 2 alpha^k - 1
+//   (a blend towards the mist): with the same stretch in its Jaumann rate the
+//   `shell` (elastic-plastic, the deviator capped by the yield stress, so
+//   neither modulus is right for the relaxation) collapsed 2 mm further.
 // Why: without relaxation a solid sharing a cell with gas keeps its pressure
 // while the gas takes every volume change, and a cell of beryllium at 3e8 Pa
 // and gas at 1e4 Pa expands without end (the `shell`'s inner surface turned
@@ -76,17 +90,32 @@ constexpr double kMaxRelaxation = 0.1;
 // the start of the step (shareVolumeChange; updateMaterials stops its pdV work
 // there too).
 constexpr double kMinVolumeKept = 1e-3;
+// A Neo-Hookean solid whose interface normal is known and which fills at
+// least half of its mixed cell: the surface layer of an elastic body whose
+// normal stretch is its own (see above).
+KOKKOS_INLINE_FUNCTION bool isSolidBody(const State& s, Index c, int k, Vec3& normal) {
+  if (s.materials(k).strength != StrengthKind::NeoHookean || !(s.alpha_ck0(c, k) >= 0.5)) {
+    return false;
+  }
+  if (c >= Index(s.n_ck.extent(0))) return false;
+  normal = Vec3{s.n_ck(c, k, 0), s.n_ck(c, k, 1), s.n_ck(c, k, 2)};
+  return dot(normal, normal) > 0.5;  // zero where alpha^k had no gradient
+}
+
 KOKKOS_INLINE_FUNCTION double relaxationVolume(const State& s, Index c, int k) {
   const auto relaxes = [&](int m) {
     return s.alpha_ck0(c, m) > 0.0 && s.alpha_ck0(c, m) >= s.alpha_trace && s.w_ck0(c, m) > 0.0;
   };
-  const bool normals = c < Index(s.n_ck.extent(0));
   const auto normalStress = [&](int m) {  // -P^m
     double sigma = -s.p_ck(c, m);
-    if (normals && s.materials(m).strength != StrengthKind::None) {
-      const Vec3 n{s.n_ck(c, m, 0), s.n_ck(c, m, 1), s.n_ck(c, m, 2)};
+    Vec3 n;
+    if (isSolidBody(s, c, m, n)) {
+      sigma += dot(n, loadSym(s.S_ck0, c, m) * n);
+    } else if (s.materials(m).strength == StrengthKind::HypoElastic && s.alpha_ck0(c, m) > 0.5 &&
+               c < Index(s.n_ck.extent(0))) {
+      n = Vec3{s.n_ck(c, m, 0), s.n_ck(c, m, 1), s.n_ck(c, m, 2)};
       const double body = 2.0 * s.alpha_ck0(c, m) - 1.0;  // f^m
-      if (body > 0.0) sigma += body * dot(n, loadSym(s.S_ck0, c, m) * n);
+      sigma += body * dot(n, loadSym(s.S_ck0, c, m) * n);
     }
     return sigma;
   };
@@ -174,7 +203,12 @@ KOKKOS_INLINE_FUNCTION CellThermo cellThermo(const State& s, Index c, double vol
     mix.valid = mix.valid && thermo.valid;
     mix.min_sound_speed2 = a2 < mix.min_sound_speed2 ? a2 : mix.min_sound_speed2;
     s.p_ck(c, k) = thermo.pressure;
-    s.w_ck(c, k) = thermo.sound_speed2 > 0.0 ? alpha / (rho * thermo.sound_speed2) : 0.0;
+    // a Neo-Hookean solid's compressibility under uniaxial strain (its
+    // normal stretch enters B, relaxationVolume); the bulk one otherwise
+    const double longitudinal2 =
+        thermo.sound_speed2 +
+        (material.strength == StrengthKind::NeoHookean ? (4.0 / 3.0) * aT2 : 0.0);
+    s.w_ck(c, k) = thermo.sound_speed2 > 0.0 ? alpha / (rho * longitudinal2) : 0.0;
     if (material.strength == StrengthKind::NeoHookean) {
       // Hyper-elastic deviator from B (DESIGN §4), J = rho0 / rho^k.
       const SymMat3 S = neoHookeanDeviator(loadSym(s.B_ck, c, k), material.rho0 / rho, mu);

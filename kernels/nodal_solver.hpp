@@ -438,13 +438,30 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
   // grew by 1 + (gamma - 1) 10 per step: 4e8 J/kg in the `ball`, whose time
   // step it cut 30-fold. What the cap leaves out goes to D, shared by mass.)
   const double volume_change = dt_stage * volume * trace(gradient);
+  auto ownVolumeRatio = [&](int k) {  // material k's volume, end over start of step
+    const double start_volume = s.alpha_ck0(c, k) * s.vol_c0(c);
+    const double own_change = volumeShare(k) * volume_change + relaxationVolume(s, c, k);
+    return own_change < -(1.0 - kMinVolumeKept) * start_volume ? kMinVolumeKept
+                                                               : 1.0 + own_change / start_volume;
+  };
+  // A Neo-Hookean body's velocity gradient (isSolidBody, geometry.hpp): the
+  // cell's, plus the normal stretch rate that makes its volume rate its own.
+  // The gas beside it takes the cell's compression; the solid stretches
+  // along n as much as its volume share and pressure relaxation say, and its
+  // B (below) and its stress power see it.
+  auto materialGradient = [&](int k) {
+    Vec3 n;
+    if (!(mixed && isSolidBody(s, c, k, n))) return gradient;
+    Mat3 own = gradient;
+    const double own_rate = (ownVolumeRatio(k) - 1.0) / dt_stage;
+    addOuter(own, own_rate - trace(gradient), n, n);
+    return own;
+  };
   auto materialWork = [&](int k) {
     if (s.m_ck(c, k) < kMassTrace * s.m_c(c)) return 0.0;
     const double start_volume = s.alpha_ck0(c, k) * s.vol_c0(c);
-    const double lowest = -(1.0 - kMinVolumeKept) * start_volume;
-    double own_change = volumeShare(k) * volume_change + relaxationVolume(s, c, k);
-    own_change = own_change < lowest ? lowest : own_change;
-    return -s.p_ck(c, k) * own_change + dt_stage * volume * stressPower(s, c, k, gradient, 0.0);
+    return -s.p_ck(c, k) * (ownVolumeRatio(k) - 1.0) * start_volume +
+           dt_stage * volume * stressPower(s, c, k, materialGradient(k), 0.0);
   };
   if (mixed) {
     const Vec3 v0 = loadVec3(s.v_c0, c);
@@ -507,12 +524,22 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
         storeSym(s.B_ck, c, k, loadSym(s.B_ck0, c, k));
       }
     } else if (material.strength == StrengthKind::HypoElastic) {
-      const SymMat3 trial = jaumannUpdate(loadSym(s.S_ck0, c, k), gradient, material.mu, dt_stage);
+      const SymMat3 trial =
+          jaumannUpdate(loadSym(s.S_ck0, c, k), materialGradient(k), material.mu, dt_stage);
       storeSym(s.S_ck, c, k, radialReturn(trial, material.yield_stress).S);
     } else if (material.strength == StrengthKind::NeoHookean) {
       if (!deformation_known) deformation = stageDeformation(cell_nodes, x_n, s, c);
       deformation_known = true;
-      storeSym(s.B_ck, c, k, pushForward(deformation, loadSym(s.B_ck0, c, k)));
+      Mat3 own = deformation;
+      Vec3 n;
+      if (mixed && isSolidBody(s, c, k, n)) {
+        // stretched along n to its own volume ratio: det(F_s) = J^k
+        Mat3 normal_stretch = zeroMat();
+        for (int i = 0; i < 3; ++i) normal_stretch.m[i][i] = 1.0;
+        addOuter(normal_stretch, ownVolumeRatio(k) / det(deformation) - 1.0, n, n);
+        own = normal_stretch * deformation;
+      }
+      storeSym(s.B_ck, c, k, pushForward(own, loadSym(s.B_ck0, c, k)));
     }
   }
 }

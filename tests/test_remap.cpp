@@ -480,6 +480,96 @@ TEST(MixedCell, SolidRelaxesItsNormalStressNotItsPressure) {
   EXPECT_LT(std::abs(relax[0]), 0.01 * relax[1]);
 }
 
+// A Neo-Hookean body beside gas (alpha >= 1/2, kernels/geometry.hpp
+// isSolidBody), compressed along y within one stage: the gas takes the cell's
+// compression, and the solid's left Cauchy-Green tensor is stretched along
+// its interface normal n to its own volume ratio J^k (its volume share plus
+// its pressure relaxation), F_s = (I + (J^k / J - 1) n n) F: with n along
+// the compression B_yy = (J^k)^2 and B_xx = B_zz = 1; with n along x the
+// cell's compression stays in B_yy and B_xx = (J^k / J)^2. Either way
+// det B = (J^k)^2, the solid's density and its deviator agree. A solid
+// fragment (alpha < 1/2) follows the cell (equal strain): B_yy = J^2.
+TEST(MixedCell, NeoHookeanBodyStretchesAlongItsNormalToItsOwnVolume) {
+  const double rate = 1e4, dt = 1e-6;  // 1% compression along y in the stage
+  struct Case {
+    double alpha_solid;
+    int normal_axis;
+  };
+  for (const Case& test : {Case{0.8, 1}, Case{0.8, 0}, Case{0.4, 1}}) {
+    BlockSpec block;
+    block.hi = {1e-3, 1e-3, 1e-3};
+    SideBoundaries sides;
+    for (auto& side : sides) side.kind = BoundaryKind::Free;
+    ProblemSetup setup;
+    setup.mesh = buildBlockMesh(block, sides);
+    const MaterialParams be = materialPreset("Be-hyper");
+    MaterialParams gas;
+    gas.gamma = 1.4;
+    setup.materials = {be, gas};
+    setup.cells.alpha_k = {test.alpha_solid, 1.0 - test.alpha_solid};
+    setup.cells.rho_k = {be.rho0, 5.0};
+    setup.cells.e_k = {0.0, 1e5 / (0.4 * 5.0)};
+    setup.cells.v = {Vec3{0, 0, 0}};
+    State state = allocateState(setup.mesh, false);
+    initializeState(setup, state);
+    state.alpha_trace = 1e-3;
+    auto normal = Kokkos::create_mirror_view(state.n_ck);
+    Kokkos::deep_copy(normal, 0.0);
+    normal(0, 0, test.normal_axis) = 1.0;
+    Kokkos::deep_copy(state.n_ck, normal);
+    PhaseTimers timers;
+    LagrangeStep lagrange(setup.mesh, state, Numerics(), timers);
+    ASSERT_GT(lagrange.computeGeometry().val, 0.0);
+    lagrange.saveStartOfStep();
+    // V = -rate y e_y on the nodes, which move with it over the stage
+    auto x = Kokkos::create_mirror_view_and_copy(HostSpace(), setup.mesh.x_n);
+    auto v_n = Kokkos::create_mirror_view(state.v_n);
+    for (Index n = 0; n < Index(x.extent(0)); ++n) {
+      const Vec3 velocity{0.0, -rate * x(n, 1), 0.0};
+      storeVec3(v_n, n, velocity);
+      storeVec3(x, n, loadVec3(x, n) + dt * velocity);
+    }
+    Kokkos::deep_copy(state.v_n, v_n);
+    Kokkos::deep_copy(setup.mesh.x_n, x);
+    // the solid's own volume ratio, from the formula of shareVolumeChange
+    Kokkos::View<double> device_relax("relax");
+    const State device_state = state;
+    Kokkos::parallel_for(
+        "test::relaxation", Kokkos::RangePolicy<ExecSpace>(0, 1),
+        KOKKOS_LAMBDA(const Index c) { device_relax() = relaxationVolume(device_state, c, 0); });
+    auto relax = Kokkos::create_mirror_view_and_copy(HostSpace(), device_relax);
+    auto w0 = Kokkos::create_mirror_view_and_copy(HostSpace(), state.w_ck0);
+    auto vol = Kokkos::create_mirror_view_and_copy(HostSpace(), state.vol_c);
+    const double J = 1.0 - rate * dt;
+    const double share = w0(0, 0) / (w0(0, 0) + w0(0, 1));
+    const double solid_volume = test.alpha_solid * vol(0);
+    const double J_solid = 1.0 + (share * vol(0) * (-rate * dt) + relax()) / solid_volume;
+    Kokkos::parallel_for(
+        "test::update_materials", Kokkos::RangePolicy<ExecSpace>(0, 1),
+        KOKKOS_LAMBDA(const Index c) {
+          updateMaterials(setup.mesh.cell_nodes, setup.mesh.x_n, device_state, dt, c, 0.0);
+        });
+    auto B = Kokkos::create_mirror_view_and_copy(HostSpace(), state.B_ck);
+    const SymMat3 b = loadSym(B, 0, 0);
+    std::printf("alpha %.1f, n along %c: J %.6f, J_solid %.6f, B = diag(%.6f %.6f %.6f)\n",
+                test.alpha_solid, "xyz"[test.normal_axis], J, J_solid, b.xx, b.yy, b.zz);
+    // the solid takes almost none of the compression (gas 1e6 times softer)
+    EXPECT_GT(J_solid, 1.0 - 1e-4);
+    if (test.alpha_solid < 0.5) {
+      EXPECT_NEAR(b.yy, J * J, 1e-12);
+      EXPECT_NEAR(b.xx, 1.0, 1e-12);
+      continue;
+    }
+    const double expected_xx = test.normal_axis == 0 ? (J_solid / J) * (J_solid / J) : 1.0;
+    const double expected_yy = test.normal_axis == 1 ? J_solid * J_solid : J * J;
+    EXPECT_NEAR(b.xx, expected_xx, 1e-12);
+    EXPECT_NEAR(b.yy, expected_yy, 1e-12);
+    EXPECT_NEAR(b.zz, 1.0, 1e-12);
+    EXPECT_NEAR(b.xy, 0.0, 1e-12);
+    EXPECT_NEAR(b.xx * b.yy * b.zz, J_solid * J_solid, 1e-12);
+  }
+}
+
 // Two ideal gases of different gamma and density at the same pressure and
 // velocity, in remap mode: the contact moves through the fixed mesh, its
 // cells become mixed, and pressure and velocity must stay uniform across it
