@@ -414,30 +414,49 @@ TEST(MixedCell, EachMaterialWorksByItsOwnPressureAndPressuresRelax) {
 namespace lagremap {
 namespace {
 
+// One 1 mm cell of a solid at its reference density and gas (5 kg/m^3, gamma
+// 1.4, specific energy e_gas) at rest, with the given outer boundaries.
+ProblemSetup solidBesideGas(const MaterialParams& solid, double alpha_solid, double e_solid,
+                            double e_gas, BoundaryKind boundary) {
+  BlockSpec block;
+  block.hi = {1e-3, 1e-3, 1e-3};
+  SideBoundaries sides;
+  for (auto& side : sides) side.kind = boundary;
+  ProblemSetup setup;
+  setup.mesh = buildBlockMesh(block, sides);
+  MaterialParams gas;
+  gas.gamma = 1.4;
+  setup.materials = {solid, gas};
+  setup.cells.alpha_k = {alpha_solid, 1.0 - alpha_solid};
+  setup.cells.rho_k = {solid.rho0, 5.0};
+  setup.cells.e_k = {e_solid, e_gas};
+  setup.cells.v = {Vec3{0, 0, 0}};
+  return setup;
+}
+
+// relaxationVolume of the solid (material 0) in the state's first cell
+double solidRelaxationVolume(const State& state) {
+  Kokkos::View<double> device_result("relax");
+  Kokkos::parallel_for(
+      "test::relaxation", Kokkos::RangePolicy<ExecSpace>(0, 1),
+      KOKKOS_LAMBDA(const Index c) { device_result() = relaxationVolume(state, c, 0); });
+  auto result = Kokkos::create_mirror_view_and_copy(HostSpace(), device_result);
+  return result();
+}
+
 // Stress relaxation of a solid beside gas (kernels/geometry.hpp): what is
 // equalised is the solid's normal stress across its interface, -p + S_nn, not
 // its pressure. A beryllium layer at the stress of a free surface
 // (p = p_gas + S_nn) hardly relaxes, the same layer with its interface along
 // the other axis (sigma_nn = -p - s) expands into the gas; both by the formula.
 TEST(MixedCell, SolidRelaxesItsNormalStressNotItsPressure) {
-  BlockSpec block;
-  block.hi = {1e-3, 1e-3, 1e-3};
-  SideBoundaries sides;
-  for (auto& side : sides) side.kind = BoundaryKind::Wall;
-  ProblemSetup setup;
-  setup.mesh = buildBlockMesh(block, sides);
   const MaterialParams be = materialPreset("Be-hypo");
-  MaterialParams gas;
-  gas.gamma = 1.4;
-  setup.materials = {be, gas};
   // s small enough for the gas's 0.1% of the volume to take the relaxation
   // uncapped (kMaxRelaxation)
   const double p_gas = 1e5, s = 1e6, alpha_solid = 0.999;
-  setup.cells.alpha_k = {alpha_solid, 1.0 - alpha_solid};
-  setup.cells.rho_k = {be.rho0, 5.0};
   // Mie-Gruneisen at rho0: p = rho0 Gamma0 e
-  setup.cells.e_k = {(p_gas + s) / (be.rho0 * be.Gamma0), p_gas / (0.4 * 5.0)};
-  setup.cells.v = {Vec3{0, 0, 0}};
+  ProblemSetup setup = solidBesideGas(be, alpha_solid, (p_gas + s) / (be.rho0 * be.Gamma0),
+                                      p_gas / (0.4 * 5.0), BoundaryKind::Wall);
   State state = allocateState(setup.mesh, false);
   initializeState(setup, state);
   state.alpha_trace = 1e-3;
@@ -461,14 +480,7 @@ TEST(MixedCell, SolidRelaxesItsNormalStressNotItsPressure) {
     Kokkos::deep_copy(normal, 0.0);
     normal(0, 0, axis) = 1.0;
     Kokkos::deep_copy(state.n_ck, normal);
-    Kokkos::View<double, HostSpace> result("relax");
-    Kokkos::View<double> device_result("relax");
-    const State device_state = state;
-    Kokkos::parallel_for(
-        "test::relaxation", Kokkos::RangePolicy<ExecSpace>(0, 1),
-        KOKKOS_LAMBDA(const Index c) { device_result() = relaxationVolume(device_state, c, 0); });
-    Kokkos::deep_copy(result, device_result);
-    relax[axis] = result();
+    relax[axis] = solidRelaxationVolume(state);
     const double s_nn = axis == 0 ? s : -s;
     const double expected = vol(0) * w_k(0, 0) * w_k(0, 1) / (w_k(0, 0) + w_k(0, 1)) *
                             ((p_k(0, 0) - body * s_nn) - p_k(0, 1));
@@ -496,20 +508,8 @@ TEST(MixedCell, NeoHookeanBodyStretchesAlongItsNormalToItsOwnVolume) {
     int normal_axis;
   };
   for (const Case& test : {Case{0.8, 1}, Case{0.8, 0}, Case{0.3, 1}}) {
-    BlockSpec block;
-    block.hi = {1e-3, 1e-3, 1e-3};
-    SideBoundaries sides;
-    for (auto& side : sides) side.kind = BoundaryKind::Free;
-    ProblemSetup setup;
-    setup.mesh = buildBlockMesh(block, sides);
-    const MaterialParams be = materialPreset("Be-hyper");
-    MaterialParams gas;
-    gas.gamma = 1.4;
-    setup.materials = {be, gas};
-    setup.cells.alpha_k = {test.alpha_solid, 1.0 - test.alpha_solid};
-    setup.cells.rho_k = {be.rho0, 5.0};
-    setup.cells.e_k = {0.0, 1e5 / (0.4 * 5.0)};
-    setup.cells.v = {Vec3{0, 0, 0}};
+    ProblemSetup setup = solidBesideGas(materialPreset("Be-hyper"), test.alpha_solid, 0.0,
+                                        1e5 / (0.4 * 5.0), BoundaryKind::Free);
     State state = allocateState(setup.mesh, false);
     initializeState(setup, state);
     state.alpha_trace = 1e-3;
@@ -532,18 +532,14 @@ TEST(MixedCell, NeoHookeanBodyStretchesAlongItsNormalToItsOwnVolume) {
     Kokkos::deep_copy(state.v_n, v_n);
     Kokkos::deep_copy(setup.mesh.x_n, x);
     // the solid's own volume ratio, from the formula of shareVolumeChange
-    Kokkos::View<double> device_relax("relax");
-    const State device_state = state;
-    Kokkos::parallel_for(
-        "test::relaxation", Kokkos::RangePolicy<ExecSpace>(0, 1),
-        KOKKOS_LAMBDA(const Index c) { device_relax() = relaxationVolume(device_state, c, 0); });
-    auto relax = Kokkos::create_mirror_view_and_copy(HostSpace(), device_relax);
+    const double relax = solidRelaxationVolume(state);
     auto w0 = Kokkos::create_mirror_view_and_copy(HostSpace(), state.w_ck0);
     auto vol = Kokkos::create_mirror_view_and_copy(HostSpace(), state.vol_c);
     const double J = 1.0 - rate * dt;
     const double share = w0(0, 0) / (w0(0, 0) + w0(0, 1));
     const double solid_volume = test.alpha_solid * vol(0);
-    const double J_solid = 1.0 + (share * vol(0) * (-rate * dt) + relax()) / solid_volume;
+    const double J_solid = 1.0 + (share * vol(0) * (-rate * dt) + relax) / solid_volume;
+    const State device_state = state;
     Kokkos::parallel_for(
         "test::update_materials", Kokkos::RangePolicy<ExecSpace>(0, 1),
         KOKKOS_LAMBDA(const Index c) {
