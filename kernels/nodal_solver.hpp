@@ -438,12 +438,15 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
   // grew by 1 + (gamma - 1) 10 per step: 4e8 J/kg in the `ball`, whose time
   // step it cut 30-fold. What the cap leaves out goes to D, shared by mass.)
   const double volume_change = dt_stage * volume * trace(gradient);
-  auto ownVolumeRatio = [&](int k) {  // material k's volume, end over start of step
+  double own_ratio[kMaxMaterials];  // each material's volume, end over start of step
+  for (int k = 0; k < s.n_materials && mixed; ++k) {
+    if (!(s.alpha_ck(c, k) > 0.0)) continue;
     const double start_volume = s.alpha_ck0(c, k) * s.vol_c0(c);
     const double own_change = volumeShare(k) * volume_change + relaxationVolume(s, c, k);
-    return own_change < -(1.0 - kMinVolumeKept) * start_volume ? kMinVolumeKept
-                                                               : 1.0 + own_change / start_volume;
-  };
+    own_ratio[k] = own_change < -(1.0 - kMinVolumeKept) * start_volume
+                       ? kMinVolumeKept
+                       : 1.0 + own_change / start_volume;
+  }
   // A Neo-Hookean body's velocity gradient (isSolidBody, geometry.hpp): the
   // cell's, plus the normal stretch rate that makes its volume rate its own.
   // The gas beside it takes the cell's compression; the solid stretches
@@ -453,14 +456,14 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
     Vec3 n;
     if (!(mixed && isSolidBody(s, c, k, n))) return gradient;
     Mat3 own = gradient;
-    const double own_rate = (ownVolumeRatio(k) - 1.0) / dt_stage;
+    const double own_rate = (own_ratio[k] - 1.0) / dt_stage;
     addOuter(own, own_rate - trace(gradient), n, n);
     return own;
   };
   auto materialWork = [&](int k) {
     if (s.m_ck(c, k) < kMassTrace * s.m_c(c)) return 0.0;
     const double start_volume = s.alpha_ck0(c, k) * s.vol_c0(c);
-    return -s.p_ck(c, k) * (ownVolumeRatio(k) - 1.0) * start_volume +
+    return -s.p_ck(c, k) * (own_ratio[k] - 1.0) * start_volume +
            dt_stage * volume * stressPower(s, c, k, materialGradient(k), 0.0);
   };
   if (mixed) {
@@ -536,7 +539,7 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
         // stretched along n to its own volume ratio: det(F_s) = J^k
         Mat3 normal_stretch = zeroMat();
         for (int i = 0; i < 3; ++i) normal_stretch.m[i][i] = 1.0;
-        addOuter(normal_stretch, ownVolumeRatio(k) / det(deformation) - 1.0, n, n);
+        addOuter(normal_stretch, own_ratio[k] / det(deformation) - 1.0, n, n);
         own = normal_stretch * deformation;
       }
       storeSym(s.B_ck, c, k, pushForward(own, loadSym(s.B_ck0, c, k)));

@@ -39,7 +39,6 @@
 
 namespace lagremap {
 
-constexpr int kMaxMaterials = 8;
 constexpr int kMaxRemapVariables = 3 * kMaxMaterials + 4 + 6 * kMaxMaterials;
 
 // Columns of the per-cell tables of remapped quantities.

@@ -9,6 +9,10 @@ namespace lagremap {
 
 using MaterialView = DeviceView<MaterialParams*>;
 
+// Most materials a run holds: per-cell kernels keep one number per material
+// in registers (the remap's integrals, the mixed cells' volume ratios).
+constexpr int kMaxMaterials = 8;
+
 struct State {
   // Conserved per cell: mass (constant in the Lagrangian phase), velocity,
   // specific total energy.
