@@ -174,11 +174,14 @@ struct Case {
 };
 
 // sedov (symmetry planes, 3D split), pile (tractions, Neo-Hookean, 3D mesh),
-// taylor in remap mode (two materials, swept faces across the cuts).
+// taylor in remap mode (two materials, swept faces across the cuts), beam in
+// remap mode (a Neo-Hookean solid in mixed cells stretching along the
+// interface normals of the last remap, ghosts included).
 std::vector<Case> cases() {
   return {{"sedov", "lagrange", {"t_end=0.3"}, 0.5},
           {"pile", "lagrange", {"t_end=1e-3"}, 1.0},
-          {"taylor", "remap", {"t_end=2e-4"}, 0.25}};
+          {"taylor", "remap", {"t_end=2e-4"}, 0.25},
+          {"beam", "remap", {"t_end=2e-6"}, 0.5}};
 }
 
 TEST(RankCount, DecomposedRunsReproduceTheSingleRankRun) {
