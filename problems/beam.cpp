@@ -200,8 +200,8 @@ std::vector<Check> finishBeam(const Config& config, const FinalFields& fields,
   // (The paper gives no number, only Fig. 12's curves.)
   std::vector<Check> checks{
       {"half_period", half_period, exact, config.real("check.period_tolerance") * exact,
-       "first zero crossing of the tip displacement vs pi / w with the first-order "
-       "Timoshenko correction (Euler-Bernoulli: 13.3 us)"}};
+       "first downward zero crossing of the tip displacement after its first rise vs "
+       "pi / w with the first-order Timoshenko correction (Euler-Bernoulli: 13.3 us)"}};
   setModeIndependentReferences(config, checks);
   return checks;
 }
