@@ -17,15 +17,43 @@ struct LeastSquares {
 
   KOKKOS_INLINE_FUNCTION void addOffset(const Vec3& dx) { normal_matrix += outerSelf(dx, 1.0); }
 
-  // Inverse of the normal matrix, lightly regularised so a direction without
-  // any neighbour (a one-cell-thick free slab) gets a zero gradient, not NaN.
+  // Inverse of the normal matrix on the directions the offsets span, zero on
+  // the others: a direction without neighbours (a one-cell-thick slab, a 1D
+  // bar) gets a zero gradient. The matrix is factored as L D L^T and a pivot
+  // below kDegeneratePivot of the trace is dropped (D^+), with its column of
+  // L. Why not a small regularisation (1e-12 tr, as before): in a slab the
+  // neighbours' centroids are not exactly coplanar (round-off, and then a
+  // twist of 1e-9 of a cell between the top and bottom nodes' velocities),
+  // and sum(dpsi dz) / (1e-12 tr) made a z-gradient of alpha a hundred times
+  // its in-plane one. The limiter then zeroed the whole gradient (the
+  // interfaces of taylor, shell and ball were remapped at first order) and
+  // the interface normal -grad alpha / |grad alpha| pointed along z.
   KOKKOS_INLINE_FUNCTION SymMat3 solver() const {
-    SymMat3 m = normal_matrix;
-    const double regularization = 1e-12 * trace(m);
-    m.xx += regularization;
-    m.yy += regularization;
-    m.zz += regularization;
-    return inverse(m);
+    constexpr double kDegeneratePivot = 1e-8;
+    const SymMat3& m = normal_matrix;
+    const double tol = kDegeneratePivot * trace(m);
+    // m = L D L^T, L unit lower triangular
+    double d[3], l10 = 0.0, l20 = 0.0, l21 = 0.0;
+    bool kept[3];
+    d[0] = m.xx;
+    kept[0] = d[0] > tol;
+    if (kept[0]) {
+      l10 = m.xy / d[0];
+      l20 = m.xz / d[0];
+    }
+    d[1] = m.yy - l10 * l10 * d[0];
+    kept[1] = d[1] > tol;
+    if (kept[1]) l21 = (m.yz - l20 * l10 * d[0]) / d[1];
+    d[2] = m.zz - l20 * l20 * d[0] - l21 * l21 * d[1];
+    kept[2] = d[2] > tol;
+    // m^+ = L^-T D^+ L^-1, with the rows of L^-1 = [[1,0,0],[a,1,0],[b,c,1]]
+    const double a = -l10, c = -l21, b = l10 * l21 - l20;
+    const double d0 = kept[0] ? 1.0 / d[0] : 0.0;
+    const double d1 = kept[1] ? 1.0 / d[1] : 0.0;
+    const double d2 = kept[2] ? 1.0 / d[2] : 0.0;
+    // (m^+)_ij = sum_k (L^-1)_ki d_k (L^-1)_kj
+    return SymMat3{d0 + a * a * d1 + b * b * d2, d1 + c * c * d2, d2,
+                   a * d1 + b * c * d2,          c * d2,          b * d2};
   }
 };
 

@@ -44,6 +44,36 @@ TEST(Reconstruction, LeastSquaresIsExactForLinearFields) {
   }
 }
 
+// A one-cell-thick slab (neighbours along x and y only) or a 1D bar (x only):
+// the neighbours' centroids are off the slab's plane by round-off and a tiny
+// twist of the mesh. The gradient in the spanned directions stays exact and
+// the missing ones get none; a regularisation of 1e-12 tr instead turned the
+// 1e-9 offsets into a z-gradient hundreds of times the true one.
+TEST(Reconstruction, LeastSquaresGivesNoGradientAlongDirectionsWithoutNeighbours) {
+  for (int trial = 0; trial < 100; ++trial) {
+    const Vec3 gradient = randomVec(5.0);
+    const bool bar = trial % 2 == 1;
+    const Vec3 axes[4] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}};
+    LeastSquares lsq;
+    Vec3 rhs{0, 0, 0};
+    for (int i = 0; i < (bar ? 2 : 4); ++i) {
+      Vec3 dx = uniform(0.5, 2.0) * (axes[i] + (bar ? 0.0 : 0.2) * randomVec(1.0));
+      dx.z = uniform(-1e-9, 1e-9);
+      if (bar) dx.y = uniform(-1e-9, 1e-9);
+      lsq.addOffset(dx);
+      rhs += dot(gradient, dx) * dx;
+    }
+    const Vec3 recovered = lsq.solver() * rhs;
+    EXPECT_NEAR(recovered.x, gradient.x, 1e-6 * norm(gradient)) << trial;
+    if (bar) {
+      EXPECT_LT(std::fabs(recovered.y), 1e-6 * norm(gradient)) << trial;
+    } else {
+      EXPECT_NEAR(recovered.y, gradient.y, 1e-6 * norm(gradient)) << trial;
+    }
+    EXPECT_LT(std::fabs(recovered.z), 1e-6 * norm(gradient)) << trial;
+  }
+}
+
 TEST(Reconstruction, LimitedVertexValuesStayWithinNeighbourBounds) {
   for (int trial = 0; trial < 1000; ++trial) {
     const double center = uniform(-1, 1);
