@@ -83,10 +83,9 @@ struct CellThermo {
 // while the gas takes every volume change, and a cell of beryllium at 3e8 Pa
 // and gas at 1e4 Pa expands without end (the `shell`'s inner surface turned
 // into a foam of beryllium and near-vacuum 20 mm thick and the shell stopped
-// 5 mm early); equalising p instead of the normal stress halves the hoop
-// stress of the shell's surface cells (sigma_rr = 0 needs p = S_rr) and it
-// collapsed 3 mm too far; with S_nn at any alpha the beryllium mist in the
-// shell's outer gas was pulled into 3e10 Pa of tension and tangled its cell.
+// 5 mm early); equalising p instead of the normal stress leaves a surface
+// layer at yield with p = 0 instead of p = S_rr (sigma_rr = 0 against the
+// gas), short of the interior's hoop stress by S_rr = Y / sqrt(3).
 // p^k are the stage-start pressures, S^k the step-start deviators (the same
 // numbers in updateMaterials and here). Summed as
 // v_n (w^k / sum w) sum_m w^m (P^k - P^m): the mean itself loses the
