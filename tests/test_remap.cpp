@@ -444,6 +444,54 @@ double solidRelaxationVolume(const State& state) {
   return result();
 }
 
+// A solid beside gas in one free cell (solidBesideGas), its interface normal
+// along `normal_axis`, squeezed along y at `rate` through one Lagrangian stage
+// of length dt (V = -rate y e_y on the nodes, which move with it), and its
+// materials updated. own_ratio: the solid's volume ratio over the stage, from
+// the formula of shareVolumeChange (its share of the cell's change plus its
+// pressure relaxation).
+struct SqueezedSolid {
+  State state;
+  double own_ratio = NAN;
+};
+SqueezedSolid squeezeSolidBesideGas(const MaterialParams& solid, double alpha_solid,
+                                    int normal_axis, double rate, double dt) {
+  ProblemSetup setup =
+      solidBesideGas(solid, alpha_solid, 0.0, 1e5 / (0.4 * 5.0), BoundaryKind::Free);
+  SqueezedSolid squeezed{allocateState(setup.mesh, false)};
+  State& state = squeezed.state;
+  initializeState(setup, state);
+  state.alpha_trace = 1e-3;
+  auto normal = Kokkos::create_mirror_view(state.n_ck);
+  Kokkos::deep_copy(normal, 0.0);
+  normal(0, 0, normal_axis) = 1.0;
+  Kokkos::deep_copy(state.n_ck, normal);
+  PhaseTimers timers;
+  LagrangeStep lagrange(setup.mesh, state, Numerics(), timers);
+  EXPECT_GT(lagrange.computeGeometry().val, 0.0);
+  lagrange.saveStartOfStep();
+  auto x = Kokkos::create_mirror_view_and_copy(HostSpace(), setup.mesh.x_n);
+  auto v_n = Kokkos::create_mirror_view(state.v_n);
+  for (Index n = 0; n < Index(x.extent(0)); ++n) {
+    const Vec3 velocity{0.0, -rate * x(n, 1), 0.0};
+    storeVec3(v_n, n, velocity);
+    storeVec3(x, n, loadVec3(x, n) + dt * velocity);
+  }
+  Kokkos::deep_copy(state.v_n, v_n);
+  Kokkos::deep_copy(setup.mesh.x_n, x);
+  const double relax = solidRelaxationVolume(state);
+  auto w0 = Kokkos::create_mirror_view_and_copy(HostSpace(), state.w_ck0);
+  auto vol = Kokkos::create_mirror_view_and_copy(HostSpace(), state.vol_c);
+  const double share = w0(0, 0) / (w0(0, 0) + w0(0, 1));
+  squeezed.own_ratio = 1.0 + (share * vol(0) * (-rate * dt) + relax) / (alpha_solid * vol(0));
+  const State device_state = state;
+  Kokkos::parallel_for(
+      "test::update_materials", Kokkos::RangePolicy<ExecSpace>(0, 1), KOKKOS_LAMBDA(const Index c) {
+        updateMaterials(setup.mesh.cell_nodes, setup.mesh.x_n, device_state, dt, c, 0.0);
+      });
+  return squeezed;
+}
+
 // Stress relaxation of a solid beside gas (kernels/geometry.hpp): what is
 // equalised is the solid's normal stress across its interface, -p + S_nn, not
 // its pressure. A beryllium layer at the stress of a free surface
@@ -507,43 +555,11 @@ TEST(MixedCell, NeoHookeanBodyStretchesAlongItsNormalToItsOwnVolume) {
     int normal_axis;
   };
   for (const Case& test : {Case{0.8, 1}, Case{0.8, 0}, Case{0.3, 1}}) {
-    ProblemSetup setup = solidBesideGas(materialPreset("Be-hyper"), test.alpha_solid, 0.0,
-                                        1e5 / (0.4 * 5.0), BoundaryKind::Free);
-    State state = allocateState(setup.mesh, false);
-    initializeState(setup, state);
-    state.alpha_trace = 1e-3;
-    auto normal = Kokkos::create_mirror_view(state.n_ck);
-    Kokkos::deep_copy(normal, 0.0);
-    normal(0, 0, test.normal_axis) = 1.0;
-    Kokkos::deep_copy(state.n_ck, normal);
-    PhaseTimers timers;
-    LagrangeStep lagrange(setup.mesh, state, Numerics(), timers);
-    ASSERT_GT(lagrange.computeGeometry().val, 0.0);
-    lagrange.saveStartOfStep();
-    // V = -rate y e_y on the nodes, which move with it over the stage
-    auto x = Kokkos::create_mirror_view_and_copy(HostSpace(), setup.mesh.x_n);
-    auto v_n = Kokkos::create_mirror_view(state.v_n);
-    for (Index n = 0; n < Index(x.extent(0)); ++n) {
-      const Vec3 velocity{0.0, -rate * x(n, 1), 0.0};
-      storeVec3(v_n, n, velocity);
-      storeVec3(x, n, loadVec3(x, n) + dt * velocity);
-    }
-    Kokkos::deep_copy(state.v_n, v_n);
-    Kokkos::deep_copy(setup.mesh.x_n, x);
-    // the solid's own volume ratio, from the formula of shareVolumeChange
-    const double relax = solidRelaxationVolume(state);
-    auto w0 = Kokkos::create_mirror_view_and_copy(HostSpace(), state.w_ck0);
-    auto vol = Kokkos::create_mirror_view_and_copy(HostSpace(), state.vol_c);
+    const SqueezedSolid squeezed = squeezeSolidBesideGas(
+        materialPreset("Be-hyper"), test.alpha_solid, test.normal_axis, rate, dt);
+    const State& state = squeezed.state;
     const double J = 1.0 - rate * dt;
-    const double share = w0(0, 0) / (w0(0, 0) + w0(0, 1));
-    const double solid_volume = test.alpha_solid * vol(0);
-    const double J_solid = 1.0 + (share * vol(0) * (-rate * dt) + relax) / solid_volume;
-    const State device_state = state;
-    Kokkos::parallel_for(
-        "test::update_materials", Kokkos::RangePolicy<ExecSpace>(0, 1),
-        KOKKOS_LAMBDA(const Index c) {
-          updateMaterials(setup.mesh.cell_nodes, setup.mesh.x_n, device_state, dt, c, 0.0);
-        });
+    const double J_solid = squeezed.own_ratio;
     auto B = Kokkos::create_mirror_view_and_copy(HostSpace(), state.B_ck);
     const SymMat3 b = loadSym(B, 0, 0);
     std::printf("alpha %.1f, n along %c: J %.6f, J_solid %.6f, B = diag(%.6f %.6f %.6f)\n",
@@ -577,40 +593,10 @@ TEST(MixedCell, HypoElasticBodyStrainsAlongItsNormalToItsOwnVolume) {
   };
   for (const Case& test : {Case{0.8, 1}, Case{0.8, 0}, Case{0.3, 1}}) {
     const MaterialParams be = materialPreset("Be-hypo");
-    ProblemSetup setup =
-        solidBesideGas(be, test.alpha_solid, 0.0, 1e5 / (0.4 * 5.0), BoundaryKind::Free);
-    State state = allocateState(setup.mesh, false);
-    initializeState(setup, state);
-    state.alpha_trace = 1e-3;
-    auto normal = Kokkos::create_mirror_view(state.n_ck);
-    Kokkos::deep_copy(normal, 0.0);
-    normal(0, 0, test.normal_axis) = 1.0;
-    Kokkos::deep_copy(state.n_ck, normal);
-    PhaseTimers timers;
-    LagrangeStep lagrange(setup.mesh, state, Numerics(), timers);
-    ASSERT_GT(lagrange.computeGeometry().val, 0.0);
-    lagrange.saveStartOfStep();
-    auto x = Kokkos::create_mirror_view_and_copy(HostSpace(), setup.mesh.x_n);
-    auto v_n = Kokkos::create_mirror_view(state.v_n);
-    for (Index n = 0; n < Index(x.extent(0)); ++n) {
-      const Vec3 velocity{0.0, -rate * x(n, 1), 0.0};
-      storeVec3(v_n, n, velocity);
-      storeVec3(x, n, loadVec3(x, n) + dt * velocity);
-    }
-    Kokkos::deep_copy(state.v_n, v_n);
-    Kokkos::deep_copy(setup.mesh.x_n, x);
-    const double relax = solidRelaxationVolume(state);
-    auto w0 = Kokkos::create_mirror_view_and_copy(HostSpace(), state.w_ck0);
-    auto vol = Kokkos::create_mirror_view_and_copy(HostSpace(), state.vol_c);
-    const double share = w0(0, 0) / (w0(0, 0) + w0(0, 1));
-    const double own_rate =
-        (share * vol(0) * (-rate * dt) + relax) / (test.alpha_solid * vol(0)) / dt;
-    const State device_state = state;
-    Kokkos::parallel_for(
-        "test::update_materials", Kokkos::RangePolicy<ExecSpace>(0, 1),
-        KOKKOS_LAMBDA(const Index c) {
-          updateMaterials(setup.mesh.cell_nodes, setup.mesh.x_n, device_state, dt, c, 0.0);
-        });
+    const SqueezedSolid squeezed =
+        squeezeSolidBesideGas(be, test.alpha_solid, test.normal_axis, rate, dt);
+    const State& state = squeezed.state;
+    const double own_rate = (squeezed.own_ratio - 1.0) / dt;
     const SymMat3 S = loadSym(Kokkos::create_mirror_view_and_copy(HostSpace(), state.S_ck), 0, 0);
     // the solid's strain rate: the cell's diag(0, -rate, 0), its normal
     // component replaced by what makes the trace own_rate (a body only)
