@@ -214,8 +214,9 @@ KOKKOS_INLINE_FUNCTION CellThermo cellThermo(const State& s, Index c, double vol
     mix.valid = mix.valid && thermo.valid;
     mix.min_sound_speed2 = a2 < mix.min_sound_speed2 ? a2 : mix.min_sound_speed2;
     s.p_ck(c, k) = thermo.pressure;
-    // a Neo-Hookean solid's compressibility under uniaxial strain (its
-    // normal stretch enters B, relaxationVolume); the bulk one otherwise
+    // a solid body's compressibility under uniaxial strain (its normal
+    // stretch is its own: takesOwnNormalStretch, relaxationVolume); the
+    // bulk one otherwise
     const double longitudinal2 =
         thermo.sound_speed2 + (present > 1 && takesOwnNormalStretch(material, alpha, s.alpha_trace)
                                    ? (4.0 / 3.0) * aT2
