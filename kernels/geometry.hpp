@@ -59,9 +59,9 @@ struct CellThermo {
 //   stretch, the `beam`'s surface layer carried the pressure of a solid
 //   stretched along the plate but none of its lateral contraction in its
 //   deviator (sigma_yy of 1e10 Pa where there is none), and the plate's
-//   bending stiffness was 0.70 EI against 0.95 EI in lagrange mode (half
-//   period 18.9 us); with it, 0.96 EI and 15.4 us (16.8 us when only cells
-//   at least half solid stretched).
+//   bending stiffness was 0.70 EI against 0.95 EI in lagrange mode (first
+//   zero crossing of the tip at 18.9 us); with it, 0.96 EI and 15.4 us
+//   (16.8 us when only cells at least half solid stretched; lagrange 14.8).
 // - A hypo-elastic solid filling at least kSolidBodyAlpha of the cell: the
 //   same (f^k = 1, its own normal stretch in its Jaumann rate, longitudinal
 //   modulus in w^k; for an elastic-plastic solid at yield the bulk modulus

@@ -537,8 +537,7 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
       Vec3 n;
       if (mixed && isSolidBody(s, c, k, n)) {
         // stretched along n to its own volume ratio: det(F_s) = J^k
-        Mat3 normal_stretch = zeroMat();
-        for (int i = 0; i < 3; ++i) normal_stretch.m[i][i] = 1.0;
+        Mat3 normal_stretch = identityMat();
         addOuter(normal_stretch, own_ratio[k] / det(deformation) - 1.0, n, n);
         own = normal_stretch * deformation;
       }
