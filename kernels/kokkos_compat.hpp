@@ -32,7 +32,14 @@ using Kokkos::Experimental::sqrt;
 // Full unrolling of the short fixed loops over a hexahedron's faces and nodes:
 // the face-node table then folds into constant offsets and the per-node
 // accumulators stay in registers. Only a hint; every compiler may ignore it.
-#if defined(__clang__) || defined(__CUDACC__) || defined(__HIPCC__)
+// nvcc and hipcc take `unroll` in their device passes (__CUDA_ARCH__,
+// __HIP_DEVICE_COMPILE__); their front ends reject GCC's spelling and pass a bare
+// `unroll` on to the host compiler, which warns, so their host passes get none.
+#if defined(__CUDA_ARCH__) || defined(__HIP_DEVICE_COMPILE__)
+#define LAGREMAP_UNROLL _Pragma("unroll")
+#elif defined(__CUDACC__) || defined(__HIPCC__)
+#define LAGREMAP_UNROLL
+#elif defined(__clang__)
 #define LAGREMAP_UNROLL _Pragma("unroll")
 #elif defined(__GNUC__)
 #define LAGREMAP_UNROLL _Pragma("GCC unroll 8")

@@ -23,7 +23,8 @@
 namespace lagremap {
 namespace {
 
-constexpr int kBall = 0, kPlate = 1, kGas = 2;  // material indices
+// Material indices; enumerators, not variables, so that device code may use them.
+enum BallMaterial : int { kBall = 0, kPlate = 1, kGas = 2 };
 
 void declareBall(Config& config) {
   refuseLagrangeMode(config, "ball",

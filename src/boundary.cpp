@@ -1,6 +1,6 @@
 #include "boundary.hpp"
 
-#include "config.hpp"
+#include "input/config.hpp"
 
 namespace lagremap {
 

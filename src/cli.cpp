@@ -48,7 +48,7 @@ void printReport(const RunOptions& options, const RunResult& result) {
 int runCommandLine(int argc, char* argv[]) {
   CLI::App app{
       "lagremap: 3D cell-centred Lagrangian (and Lagrange-Remap) multi-material dynamics.\n"
-      "Kokkos options (--kokkos-threads=N, ...) are accepted too.",
+      "Kokkos options (--kokkos-threads=N or --kokkos-num-threads=N, ...) are accepted too.",
       "lagremap"};
   std::string problem_name, mode = "lagrange", input, output;
   double scale = 1.0, t_end = 0.0, cfl = 0.0;

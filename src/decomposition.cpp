@@ -274,9 +274,9 @@ Subdomain decompose(const Mesh& global) {
   const auto traction_faces_g =
       Kokkos::create_mirror_view_and_copy(HostSpace(), global.node_traction_faces);
 
-  Kokkos::View<Real* [3], HostSpace> x_host("lagremap::mesh::x_n", mesh.n_nodes);
+  Vec3View::HostMirror x_host("lagremap::mesh::x_n", mesh.n_nodes);
   Kokkos::View<int*, HostSpace> constrained_host("lagremap::mesh::node_constrained", mesh.n_nodes);
-  Kokkos::View<Real* [6], HostSpace> projector_host("lagremap::mesh::node_projector", mesh.n_nodes);
+  Sym6View::HostMirror projector_host("lagremap::mesh::node_projector", mesh.n_nodes);
   Kokkos::View<int*, HostSpace> node_owned_host("lagremap::mesh::node_owned", mesh.n_nodes);
   mesh.node_global = Kokkos::View<long*, HostSpace>("lagremap::mesh::node_global", mesh.n_nodes);
   std::vector<Index> traction_offsets(std::size_t(mesh.n_nodes) + 1, 0), traction_faces;
@@ -295,11 +295,11 @@ Subdomain decompose(const Mesh& global) {
     }
     traction_offsets[std::size_t(n) + 1] = Index(traction_faces.size());
   }
-  Kokkos::View<Index* [8], HostSpace> nodes_host("lagremap::mesh::cell_nodes", mesh.n_cells);
-  Kokkos::View<Index* [6], HostSpace> neighbors_host("lagremap::mesh::cell_neighbors",
+  CellNodesView::HostMirror nodes_host("lagremap::mesh::cell_nodes", mesh.n_cells);
+  CellFacesView::HostMirror neighbors_host("lagremap::mesh::cell_neighbors",
                                                      mesh.n_cells);
-  Kokkos::View<Index* [6], HostSpace> side_host("lagremap::mesh::cell_face_side", mesh.n_cells);
-  Kokkos::View<Index* [6], HostSpace> face_host("lagremap::mesh::cell_neighbor_face", mesh.n_cells);
+  CellFacesView::HostMirror side_host("lagremap::mesh::cell_face_side", mesh.n_cells);
+  CellFacesView::HostMirror face_host("lagremap::mesh::cell_neighbor_face", mesh.n_cells);
   Kokkos::View<int*, HostSpace> cell_owned_host("lagremap::mesh::cell_owned", mesh.n_cells);
   mesh.cell_global = Kokkos::View<long*, HostSpace>("lagremap::mesh::cell_global", mesh.n_cells);
   for (Index c = 0; c < mesh.n_cells; ++c) {

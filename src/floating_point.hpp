@@ -2,7 +2,8 @@
 // exponentially small perturbations (1e-310 and below) in the fluid at rest;
 // x86 cores compute on such subnormal numbers up to a hundred times slower,
 // which made the second-order corner kernel 2.5x slower late in a Sedov run.
-// Flushing them to zero changes no result above 1e-308. GPUs flush by default.
+// Flushing them to zero changes no result above 1e-308. Host only: GPUs take
+// double-precision subnormals in hardware without that penalty.
 #pragma once
 
 #if defined(__SSE__)

@@ -1,13 +1,12 @@
 // Thin driver (STYLE §1): Kokkos takes its own flags, the library does the rest.
-#include <Kokkos_Core.hpp>
-
 #include "cli.hpp"
 #include "floating_point.hpp"
+#include "kokkos_session.hpp"
 #include "parallel.hpp"
 
 int main(int argc, char* argv[]) {
   lagremap::flushDenormalsToZero();  // before Kokkos starts its threads, which inherit it
   lagremap::parallel::Session mpi(argc, argv);  // one rank per socket or GPU (DESIGN §6)
-  Kokkos::ScopeGuard kokkos(argc, argv);
+  lagremap::KokkosSession kokkos(argc, argv);
   return lagremap::runCommandLine(argc, argv);
 }

@@ -45,7 +45,7 @@ Mesh buildBlockMesh(const BlockSpec& spec, const SideBoundaries& boundaries) {
   auto cell_id = [&](int i, int j, int k) { return i + spec.nx * (j + spec.ny * k); };
 
   // --- node coordinates: block, random interior perturbation, then the mapping.
-  Kokkos::View<Real* [3], HostSpace> x_host("lagremap::mesh::x_n", mesh.n_nodes);
+  Vec3View::HostMirror x_host("lagremap::mesh::x_n", mesh.n_nodes);
   const double dx = (spec.hi.x - spec.lo.x) / spec.nx;
   const double dy = (spec.hi.y - spec.lo.y) / spec.ny;
   const double dz = (spec.hi.z - spec.lo.z) / spec.nz;
@@ -65,10 +65,10 @@ Mesh buildBlockMesh(const BlockSpec& spec, const SideBoundaries& boundaries) {
       }
 
   // --- cell -> node (VTK hex), cell -> neighbour and boundary side per face.
-  Kokkos::View<Index* [8], HostSpace> nodes_host("lagremap::mesh::cell_nodes", mesh.n_cells);
-  Kokkos::View<Index* [6], HostSpace> neighbors_host("lagremap::mesh::cell_neighbors",
+  CellNodesView::HostMirror nodes_host("lagremap::mesh::cell_nodes", mesh.n_cells);
+  CellFacesView::HostMirror neighbors_host("lagremap::mesh::cell_neighbors",
                                                      mesh.n_cells);
-  Kokkos::View<Index* [6], HostSpace> side_host("lagremap::mesh::cell_face_side", mesh.n_cells);
+  CellFacesView::HostMirror side_host("lagremap::mesh::cell_face_side", mesh.n_cells);
   for (int k = 0; k < spec.nz; ++k)
     for (int j = 0; j < spec.ny; ++j)
       for (int i = 0; i < spec.nx; ++i) {
@@ -96,7 +96,7 @@ Mesh buildBlockMesh(const BlockSpec& spec, const SideBoundaries& boundaries) {
 
   // --- the neighbour's face holding the same 4 nodes, found by search so it
   // holds for any cell orientation, not only the block's lo/hi pairing.
-  Kokkos::View<Index* [6], HostSpace> neighbor_face_host("lagremap::mesh::cell_neighbor_face",
+  CellFacesView::HostMirror neighbor_face_host("lagremap::mesh::cell_neighbor_face",
                                                          mesh.n_cells);
   for (Index c = 0; c < mesh.n_cells; ++c)
     for (int f = 0; f < 6; ++f) {
@@ -152,7 +152,7 @@ Mesh buildBlockMesh(const BlockSpec& spec, const SideBoundaries& boundaries) {
     }
   }
   Kokkos::View<int*, HostSpace> constrained_host("lagremap::mesh::node_constrained", mesh.n_nodes);
-  Kokkos::View<Real* [6], HostSpace> projector_host("lagremap::mesh::node_projector", mesh.n_nodes);
+  Sym6View::HostMirror projector_host("lagremap::mesh::node_projector", mesh.n_nodes);
   std::vector<Index> traction_offsets(mesh.n_nodes + 1, 0);
   std::vector<Index> traction_list;
   for (Index n = 0; n < mesh.n_nodes; ++n) {
@@ -188,7 +188,7 @@ Mesh buildBlockMesh(const BlockSpec& spec, const SideBoundaries& boundaries) {
     traction_offsets[n + 1] = traction_offsets[n] + Index(traction_faces[n].size());
     traction_list.insert(traction_list.end(), traction_faces[n].begin(), traction_faces[n].end());
   }
-  Kokkos::View<Real[kNumSides][6], HostSpace> traction_host("lagremap::mesh::side_traction");
+  decltype(mesh.side_traction)::HostMirror traction_host("lagremap::mesh::side_traction");
   for (int side = 0; side < kNumSides; ++side) {
     const SymMat3& s = boundaries[side].traction_stress;
     const double comps[6] = {s.xx, s.yy, s.zz, s.xy, s.yz, s.xz};

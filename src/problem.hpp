@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "config.hpp"
+#include "input/config.hpp"
 #include "mesh.hpp"
 #include "parallel.hpp"
 #include "state.hpp"

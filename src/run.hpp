@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "config.hpp"
+#include "input/config.hpp"
 #include "problem.hpp"
 
 namespace lagremap {

@@ -1,7 +1,8 @@
 // Phase timers and profiling regions (STYLE §8-9): each phase of the step is a
 // Kokkos Tools region `lagremap::<phase>` and accumulates wall time. Timing a
-// phase fences the execution space once at its end, so the time is the
-// phase's own even on asynchronous backends.
+// phase fences the execution space at its start and its end, so the time is
+// the phase's own even on asynchronous backends (work launched before it is
+// not counted, its own kernels are).
 #pragma once
 
 #include <array>
@@ -35,6 +36,7 @@ class PhaseTimers {
    public:
     Scope(PhaseTimers& timers, Phase phase) : timers_(timers), phase_(phase) {
       Kokkos::Profiling::pushRegion(std::string("lagremap::") + phaseName(phase));
+      Kokkos::fence();
       timer_.reset();
     }
     ~Scope() {

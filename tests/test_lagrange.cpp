@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "src/kokkos_session.hpp"
 #include "src/lagrange_step.hpp"
 #include "src/materials.hpp"
 #include "test_support.hpp"
@@ -236,13 +237,24 @@ std::vector<double> readDataset(const std::string& file, const std::string& name
   return values;
 }
 
+// Both spellings of the thread-count flag reach this Kokkos as its own.
+TEST(Lagrange, ThreadCountFlagTakesBothKokkosSpellings) {
+  const std::string flag = kokkosThreadsFlag();
+  EXPECT_EQ(withKokkosThreadsSpelling("--kokkos-threads=3"), flag + "=3");
+  EXPECT_EQ(withKokkosThreadsSpelling("--kokkos-num-threads=3"), flag + "=3");
+  EXPECT_EQ(withKokkosThreadsSpelling("--kokkos-threads-x=3"), "--kokkos-threads-x=3");
+  EXPECT_EQ(withKokkosThreadsSpelling("--threads=3"), "--threads=3");
+  EXPECT_EQ(withKokkosThreadsSpelling("--kokkos-numa=3"), "--kokkos-numa=3");
+}
+
 TEST(Lagrange, CrsGatherIsBitIdenticalForOneAndTwoThreads) {
   const std::string dir = testing::scratchDir("determinism");
+  // One run with each spelling of the flag (Kokkos 3.x and 4.x).
   for (int threads : {1, 2}) {
+    const std::string flag = threads == 1 ? "--kokkos-threads=" : "--kokkos-num-threads=";
     const auto result = testing::runLagremap(
-        "--problem sedov --scale 0.4 --t-end 0.3 --set check.radius_tolerance=0.2 --quiet "
-        "--kokkos-threads=" +
-        std::to_string(threads) + " --output " + dir + "/t" + std::to_string(threads));
+        "--problem sedov --scale 0.4 --t-end 0.3 --set check.radius_tolerance=0.2 --quiet " +
+        flag + std::to_string(threads) + " --output " + dir + "/t" + std::to_string(threads));
     ASSERT_EQ(result.exit_code, 0) << result.output;
   }
   for (const char* name :

@@ -6,6 +6,7 @@
 #include <cstdlib>
 
 #include "src/floating_point.hpp"
+#include "src/kokkos_session.hpp"
 
 int main(int argc, char* argv[]) {
   // Unbound threads, as Kokkos advises for unit tests (the OpenMP runtime
@@ -13,7 +14,7 @@ int main(int argc, char* argv[]) {
   // output that ctest's test discovery parses.
   setenv("OMP_PROC_BIND", "false", 0);
   lagremap::flushDenormalsToZero();  // as the lagremap driver does
-  Kokkos::ScopeGuard kokkos(argc, argv);
+  lagremap::KokkosSession kokkos(argc, argv);
   ::testing::InitGoogleTest(&argc, argv);
   return RUN_ALL_TESTS();
 }

@@ -15,6 +15,7 @@
 
 #include "src/decomposition.hpp"
 #include "src/floating_point.hpp"
+#include "src/kokkos_session.hpp"
 #include "src/parallel.hpp"
 #include "test_support.hpp"
 
@@ -321,7 +322,7 @@ int main(int argc, char* argv[]) {
   lagremap::parallel::Session mpi(argc, argv);
   int status = 0;
   {
-    Kokkos::ScopeGuard kokkos(argc, argv);
+    lagremap::KokkosSession kokkos(argc, argv);
     ::testing::InitGoogleTest(&argc, argv);
     if (!lagremap::parallel::isRoot()) {
       auto& listeners = ::testing::UnitTest::GetInstance()->listeners();

@@ -331,6 +331,20 @@ namespace {
 // relaxation relax^k = v w^k (p^k - p_mean) (at most kMaxRelaxation of the
 // material's volume) with its own work -p^k relax^k;
 // the relaxation's dissipation sum_k p^k relax^k >= 0 is heat, shared by mass.
+// updateMaterials (kernels/geometry.hpp) of cell 0, whose cell energy is e_cell.
+// (A free function: nvcc's device lambdas may not live in a test body, and
+// only the Views they read are captured.)
+void updateMaterialsOfFirstCell(const Mesh& mesh, const State& state, double dt, double e_cell) {
+  const auto cell_nodes = mesh.cell_nodes;
+  const auto x_n = mesh.x_n;
+  const State device_state = state;
+  Kokkos::parallel_for(
+      "test::update_materials", Kokkos::RangePolicy<ExecSpace>(0, 1), KOKKOS_LAMBDA(const Index c) {
+        updateMaterials(cell_nodes, x_n, device_state, dt, c, e_cell);
+      });
+  Kokkos::fence();
+}
+
 TEST(MixedCell, EachMaterialWorksByItsOwnPressureAndPressuresRelax) {
   BlockSpec block;  // one cell, not of unit volume (the work carries v)
   block.hi = {0.5, 0.4, 0.3};
@@ -388,11 +402,7 @@ TEST(MixedCell, EachMaterialWorksByItsOwnPressureAndPressuresRelax) {
   }
   const double mass = m_k(0, 0) + m_k(0, 1);
   const double e_cell = (m_k(0, 0) * e0(0, 0) + m_k(0, 1) * e0(0, 1)) / mass;
-  Kokkos::parallel_for(
-      "test::update_materials", Kokkos::RangePolicy<ExecSpace>(0, 1), KOKKOS_LAMBDA(const Index c) {
-        updateMaterials(setup.mesh.cell_nodes, setup.mesh.x_n, state, dt, c,
-                        e_cell + reversible / mass);
-      });
+  updateMaterialsOfFirstCell(setup.mesh, state, dt, e_cell + reversible / mass);
   auto e = Kokkos::create_mirror_view_and_copy(HostSpace(), state.e_ck);
   for (int k = 0; k < 2; ++k) {
     const double expected = work[k] - p_k(0, k) * relax[k] + m_k(0, k) / mass * heat;
@@ -484,11 +494,7 @@ SqueezedSolid squeezeSolidBesideGas(const MaterialParams& solid, double alpha_so
   auto vol = Kokkos::create_mirror_view_and_copy(HostSpace(), state.vol_c);
   const double share = w0(0, 0) / (w0(0, 0) + w0(0, 1));
   squeezed.own_ratio = 1.0 + (share * vol(0) * (-rate * dt) + relax) / (alpha_solid * vol(0));
-  const State device_state = state;
-  Kokkos::parallel_for(
-      "test::update_materials", Kokkos::RangePolicy<ExecSpace>(0, 1), KOKKOS_LAMBDA(const Index c) {
-        updateMaterials(setup.mesh.cell_nodes, setup.mesh.x_n, device_state, dt, c, 0.0);
-      });
+  updateMaterialsOfFirstCell(setup.mesh, state, dt, 0.0);
   return squeezed;
 }
 

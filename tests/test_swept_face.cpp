@@ -50,7 +50,7 @@ SweptMeshCase distortedCase(bool free_boundary, unsigned seed) {
 
   const HostMesh host = copyToHost(sc.mesh);
   // A separate host View: on a host backend the mirror of x_n is x_n itself.
-  Kokkos::View<Real* [3], HostSpace> x_lag("lagremap::test::x_lag_host", sc.mesh.n_nodes);
+  Vec3View::HostMirror x_lag("lagremap::test::x_lag_host", sc.mesh.n_nodes);
   const double h[3] = {(block.hi.x - block.lo.x) / block.nx, (block.hi.y - block.lo.y) / block.ny,
                        (block.hi.z - block.lo.z) / block.nz};
   const int n_axis[3] = {block.nx, block.ny, block.nz};

@@ -1,0 +1,31 @@
+// Kokkos for the life of the process (a ScopeGuard that also accepts both
+// spellings of the thread-count flag): Kokkos 3.x reads --kokkos-threads=N,
+// 4.x --kokkos-num-threads=N, and a lagremap user or script may write either
+// with any Kokkos. Used by the driver, the test mains and the benchmarks.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace lagremap {
+
+class KokkosSession {
+ public:
+  // Rewrites the flag in argv to the spelling of the Kokkos built against,
+  // then initialises Kokkos, which removes its flags from argc/argv.
+  KokkosSession(int& argc, char* argv[]);
+  ~KokkosSession();
+  KokkosSession(const KokkosSession&) = delete;
+  KokkosSession& operator=(const KokkosSession&) = delete;
+
+ private:
+  std::vector<std::string> rewritten_;  // argv entries that point here must outlive Kokkos
+};
+
+// The thread-count flag as this Kokkos spells it ("--kokkos-threads" or
+// "--kokkos-num-threads"), and `argument` rewritten to it (unchanged if it is
+// not a thread-count flag).
+const char* kokkosThreadsFlag();
+std::string withKokkosThreadsSpelling(const std::string& argument);
+
+}  // namespace lagremap
