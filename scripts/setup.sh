@@ -2,15 +2,37 @@
 # Installs what lagremap needs, idempotently:
 #  - Debian packages (compiler, cmake, Open MPI, parallel HDF5, GoogleTest,
 #    Google Benchmark, CLI11, toml++, python3 numpy/matplotlib/h5py);
-#  - Kokkos 3.4.01 (OpenMP + Serial), built from Debian's trilinos source
-#    package into a cached prefix, unless the user supplies Kokkos_ROOT.
+#  - Kokkos 3.4.01, built from Debian's trilinos source package into a cached
+#    prefix, unless the user supplies Kokkos_ROOT:
+#      --backend openmp (default)  OpenMP + Serial, as shipped;
+#      --backend cuda              CUDA + Serial for LAGREMAP_CUDA_ARCH (default 90),
+#                                  from a copy of the source with the project's
+#                                  patch scripts/patches/kokkos-3.4.01-cuda.patch;
+#    (LAGREMAP_BACKEND=cuda is the same as --backend cuda).
+#  - --stage-device DIR: also stages in DIR what scripts/device_check.sh needs on
+#    a GPU machine without Debian packages or network (see stage_device below).
 # Prints nothing but progress; the Kokkos prefix is written to
-# build/kokkos-root.txt for the other scripts.
+# build/kokkos-root.txt (build-cuda/ for cuda) for the other scripts.
 set -euo pipefail
 
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+# shellcheck source=backend.sh
+source "$here/scripts/backend.sh"
+stage_dir=""
+set -- "${backend_args[@]+"${backend_args[@]}"}"
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --stage-device) stage_dir=${2:?--stage-device needs a directory}; shift 2 ;;
+    --stage-device=*) stage_dir=${1#--stage-device=}; shift ;;
+    *) echo "setup: unknown argument '$1' (--backend openmp|cuda, --stage-device DIR)" >&2; exit 2 ;;
+  esac
+done
 cache=${LAGREMAP_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/lagremap}
-kokkos_prefix_default="$cache/kokkos-3.4.01-openmp"
+if [ "$backend" = cuda ]; then
+  kokkos_prefix_default="$cache/kokkos-3.4.01-cuda-sm$cuda_arch"
+else
+  kokkos_prefix_default="$cache/kokkos-3.4.01-openmp"
+fi
 
 log() { printf '[setup] %s\n' "$*" >&2; }
 
@@ -18,7 +40,7 @@ sudo_cmd=()
 if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
 
 packages=(
-  g++ cmake make pkg-config dpkg-dev
+  g++ cmake make pkg-config dpkg-dev patch
   libopenmpi-dev openmpi-bin libhdf5-openmpi-dev
   libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev libtomlplusplus-dev
   python3-numpy python3-matplotlib python3-h5py
@@ -44,6 +66,58 @@ fi
 # --- Kokkos -----------------------------------------------------------------
 kokkos_found() { [ -f "$1/lib/cmake/Kokkos/KokkosConfig.cmake" ] || [ -f "$1/lib64/cmake/Kokkos/KokkosConfig.cmake" ]; }
 
+# Debian's trilinos source package, downloaded once; prints packages/kokkos.
+kokkos_source() {
+  local src_list=/etc/apt/sources.list.d/lagremap-deb-src.sources
+  local work="$cache/trilinos-src"
+  mkdir -p "$work"
+  if ! compgen -G "$work/*/packages/kokkos" >/dev/null; then
+    if ! grep -rqs '^Types:.*deb-src' /etc/apt/sources.list.d/ && ! grep -qs '^deb-src' /etc/apt/sources.list; then
+      # Same archives as the binary entries, source type (the deb822 file Debian ships).
+      sed -e 's/^Types:.*/Types: deb-src/' /etc/apt/sources.list.d/debian.sources | "${sudo_cmd[@]}" tee "$src_list" >/dev/null
+      apt_updated=0
+    fi
+    apt_update_once >&2
+    (cd "$work" && apt-get source --download-only trilinos >/dev/null 2>&1)
+    local tarball top
+    tarball=$(ls "$work"/trilinos_*.orig.tar.* | head -n 1)
+    log "extracting packages/kokkos from $(basename "$tarball")"
+    # (no pipefail here: head closes the pipe early on purpose)
+    top=$(set +o pipefail; tar -tf "$tarball" | head -n 1 | cut -d/ -f1)
+    tar -xf "$tarball" -C "$work" "$top/packages/kokkos"
+  fi
+  ls -d "$work"/*/packages/kokkos | head -n 1
+}
+
+# A copy of the Kokkos source for the CUDA build with the project's patch
+# applied (once: a copy already patched is kept); prints its path.
+patched_cuda_source() {
+  local shipped=$1 patched="$cache/kokkos-3.4.01-cuda-src"
+  local patch_file="$here/scripts/patches/kokkos-3.4.01-cuda.patch"
+  if [ ! -f "$patched/.lagremap-patched" ]; then
+    rm -rf "$patched"
+    cp -r "$shipped" "$patched"
+    if ! patch -d "$patched" -p1 --dry-run -R -s -f < "$patch_file" >/dev/null 2>&1; then
+      patch -d "$patched" -p1 -s -f < "$patch_file" >&2
+    fi
+    touch "$patched/.lagremap-patched"
+  fi
+  echo "$patched"
+}
+
+# Kokkos' name of a CUDA compute capability (Kokkos_ARCH_<name>).
+kokkos_cuda_arch_name() {
+  case "$1" in
+    70) echo VOLTA70 ;;
+    72) echo VOLTA72 ;;
+    75) echo TURING75 ;;
+    80) echo AMPERE80 ;;
+    86) echo AMPERE86 ;;
+    90) echo HOPPER90 ;;  # added to 3.4.01 by the project patch
+    *) echo "setup: LAGREMAP_CUDA_ARCH=$1: Kokkos 3.4.01 knows 70 72 75 80 86 (90 with the patch)" >&2; exit 2 ;;
+  esac
+}
+
 if [ -n "${Kokkos_ROOT:-}" ]; then
   kokkos_found "$Kokkos_ROOT" || { echo "setup: Kokkos_ROOT=$Kokkos_ROOT has no KokkosConfig.cmake" >&2; exit 1; }
   kokkos_prefix=$Kokkos_ROOT
@@ -53,32 +127,27 @@ else
   if kokkos_found "$kokkos_prefix"; then
     log "reusing Kokkos in $kokkos_prefix"
   else
-    log "building Kokkos 3.4.01 (OpenMP+Serial) from Debian's trilinos source package"
-    src_list=/etc/apt/sources.list.d/lagremap-deb-src.sources
-    if ! grep -rqs '^Types:.*deb-src' /etc/apt/sources.list.d/ && ! grep -qs '^deb-src' /etc/apt/sources.list; then
-      # Same archives as the binary entries, source type (the deb822 file Debian ships).
-      sed -e 's/^Types:.*/Types: deb-src/' /etc/apt/sources.list.d/debian.sources | "${sudo_cmd[@]}" tee "$src_list" >/dev/null
-      apt_updated=0
-    fi
-    apt_update_once
-    work="$cache/trilinos-src"
-    mkdir -p "$work"
-    if ! ls -d "$work"/trilinos-*/packages/kokkos >/dev/null 2>&1; then
-      (cd "$work" && apt-get source --download-only trilinos >/dev/null 2>&1)
-      tarball=$(ls "$work"/trilinos_*.orig.tar.* | head -n 1)
-      log "extracting packages/kokkos from $(basename "$tarball")"
-      # (no pipefail here: head closes the pipe early on purpose)
-      top=$(set +o pipefail; tar -tf "$tarball" | head -n 1 | cut -d/ -f1)
-      tar -xf "$tarball" -C "$work" "$top/packages/kokkos"
-    fi
-    kokkos_src=$(ls -d "$work"/*/packages/kokkos | head -n 1)
-    build="$work/kokkos-build"
+    log "building Kokkos 3.4.01 ($backend) from Debian's trilinos source package"
+    kokkos_src=$(kokkos_source)
+    build="$cache/kokkos-build-$backend"
     rm -rf "$build"
-    cmake -S "$kokkos_src" -B "$build" -DCMAKE_BUILD_TYPE=Release \
-      -DCMAKE_INSTALL_PREFIX="$kokkos_prefix" -DCMAKE_CXX_STANDARD=17 \
-      -DKokkos_ENABLE_OPENMP=ON -DKokkos_ENABLE_SERIAL=ON \
-      -DKokkos_ENABLE_TESTS=OFF -DKokkos_ENABLE_EXAMPLES=OFF \
-      -DBUILD_SHARED_LIBS=OFF -DCMAKE_POSITION_INDEPENDENT_CODE=ON >/dev/null
+    if [ "$backend" = cuda ]; then
+      kokkos_src=$(patched_cuda_source "$kokkos_src")
+      arch_name=$(kokkos_cuda_arch_name "$cuda_arch")
+      cmake -S "$kokkos_src" -B "$build" -DCMAKE_BUILD_TYPE=Release \
+        -DCMAKE_INSTALL_PREFIX="$kokkos_prefix" -DCMAKE_CXX_STANDARD=17 \
+        -DCMAKE_CXX_COMPILER="$kokkos_src/bin/nvcc_wrapper" \
+        -DKokkos_ENABLE_CUDA=ON -DKokkos_ENABLE_SERIAL=ON -DKokkos_ENABLE_CUDA_LAMBDA=ON \
+        "-DKokkos_ARCH_$arch_name=ON" \
+        -DKokkos_ENABLE_TESTS=OFF -DKokkos_ENABLE_EXAMPLES=OFF \
+        -DBUILD_SHARED_LIBS=OFF -DCMAKE_POSITION_INDEPENDENT_CODE=ON >/dev/null
+    else
+      cmake -S "$kokkos_src" -B "$build" -DCMAKE_BUILD_TYPE=Release \
+        -DCMAKE_INSTALL_PREFIX="$kokkos_prefix" -DCMAKE_CXX_STANDARD=17 \
+        -DKokkos_ENABLE_OPENMP=ON -DKokkos_ENABLE_SERIAL=ON \
+        -DKokkos_ENABLE_TESTS=OFF -DKokkos_ENABLE_EXAMPLES=OFF \
+        -DBUILD_SHARED_LIBS=OFF -DCMAKE_POSITION_INDEPENDENT_CODE=ON >/dev/null
+    fi
     cmake --build "$build" -j "$(nproc)" >/dev/null
     cmake --install "$build" >/dev/null
     rm -rf "$build"
@@ -86,6 +155,12 @@ else
   fi
 fi
 
-mkdir -p "$here/build"
-echo "$kokkos_prefix" > "$here/build/kokkos-root.txt"
-log "ready (Kokkos_ROOT=$kokkos_prefix)"
+mkdir -p "$build_dir"
+echo "$kokkos_prefix" > "$build_dir/kokkos-root.txt"
+log "ready (backend $backend, Kokkos_ROOT=$kokkos_prefix)"
+
+if [ -n "$stage_dir" ]; then
+  # shellcheck source=stage_device.sh
+  source "$here/scripts/stage_device.sh"
+  stage_device "$stage_dir"
+fi

@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# The CUDA variant's compile check (CI runs it after the tests): sets up the
+# CUDA Kokkos, builds every target into build-cuda/ (compile and link only:
+# nothing runs, a GPU is not needed) and fails on any compiler warning from
+# lagremap's own files or on an executable without code for the chosen arch
+# (LAGREMAP_CUDA_ARCH, default 90). Without nvcc it says so and succeeds.
+set -euo pipefail
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+if ! command -v nvcc >/dev/null 2>&1 && [ ! -x /usr/local/cuda/bin/nvcc ]; then
+  echo "CUDA compile check skipped: no nvcc on PATH or in /usr/local/cuda/bin"
+  exit 0
+fi
+arch=${LAGREMAP_CUDA_ARCH:-90}
+log=$(mktemp)
+trap 'rm -f "$log"' EXIT
+start=$(date +%s)
+bash "$here/scripts/setup.sh" --backend cuda
+if ! bash "$here/scripts/build.sh" --backend cuda > "$log" 2>&1; then
+  grep -v '^\[' "$log" | tail -n 60 >&2
+  echo "CUDA compile check FAILED: the build (above)" >&2
+  exit 1
+fi
+# Warnings located in our sources (nvcc: "file(line): warning", g++: "file:line:col: warning").
+ours=$(grep -E "^($here|\.\./|[a-z_]+/)[^ ]*(\([0-9]+\)|:[0-9]+:[0-9]+): warning" "$log" | grep -v "/.cache/" || true)
+if [ -n "$ours" ]; then
+  echo "$ours" >&2
+  echo "CUDA compile check FAILED: $(echo "$ours" | wc -l) warnings from lagremap's sources" >&2
+  exit 1
+fi
+cuobjdump=$(dirname "$(command -v nvcc || echo /usr/local/cuda/bin/nvcc)")/cuobjdump
+build=${LAGREMAP_BUILD_DIR:-$here/build-cuda}
+for exe in "$build/lagremap" "$build"/tests/test_* "$build"/perf/bench_*; do
+  [ -x "$exe" ] && [ -f "$exe" ] || continue
+  "$cuobjdump" --list-elf "$exe" 2>/dev/null | grep -q "sm_$arch" ||
+    { echo "CUDA compile check FAILED: $exe has no sm_$arch code" >&2; exit 1; }
+done
+echo "CUDA compile check passed: every target built for sm_$arch in $(($(date +%s) - start)) s, no warning from our sources"
