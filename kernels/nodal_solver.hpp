@@ -261,48 +261,58 @@ KOKKOS_INLINE_FUNCTION SymMat3 constrainedMatrix(const SymMat3& projector, const
 // Solves every node and finds where it moves: x_n_next = x_n0 + dt_stage V_n.
 inline void nodalSolve(const Mesh& mesh, const State& state, const CornerControls& controls,
                        double dt_stage) {
-  const auto m = mesh;
+  // The Views it reads, not the whole Mesh (whose global ids live on the host).
+  const auto cell_face_side = mesh.cell_face_side;
+  const auto cell_nodes = mesh.cell_nodes;
+  const auto node_constrained = mesh.node_constrained;
+  const auto node_corner_offsets = mesh.node_corner_offsets;
+  const auto node_corners = mesh.node_corners;
+  const auto node_projector = mesh.node_projector;
+  const auto node_traction_faces = mesh.node_traction_faces;
+  const auto node_traction_offsets = mesh.node_traction_offsets;
+  const auto side_traction = mesh.side_traction;
+  const auto x_n = mesh.x_n;
   const auto s = state;
   const bool atomics = controls.gather == Gather::Atomics;
   Kokkos::parallel_for(
       atomics ? "lagremap::nodal_solve::atomics_sum" : "lagremap::nodal_solve::crs_gather",
-      Kokkos::RangePolicy<ExecSpace>(0, m.n_nodes), KOKKOS_LAMBDA(const Index n) {
+      Kokkos::RangePolicy<ExecSpace>(0, mesh.n_nodes), KOKKOS_LAMBDA(const Index n) {
         SymMat3 impedance = identitySym(0.0);
         Vec3 rhs{0, 0, 0};
         if (atomics) {
           impedance = loadSym(s.M_n, n);
           rhs = loadVec3(s.B_n, n);
         } else {
-          for (Index i = m.node_corner_offsets(n); i < m.node_corner_offsets(n + 1); ++i) {
-            const Index corner = m.node_corners(i);
+          for (Index i = node_corner_offsets(n); i < node_corner_offsets(n + 1); ++i) {
+            const Index corner = node_corners(i);
             impedance += loadSym(s.M_cp, corner);
             rhs += loadVec3(s.B_cp, corner);
           }
         }
         // External load of traction faces: sum_bf s_pf sigma^b n_pf.
         Vec3 load{0, 0, 0};
-        for (Index i = m.node_traction_offsets(n); i < m.node_traction_offsets(n + 1); ++i) {
-          const Index face_id = m.node_traction_faces(i);
+        for (Index i = node_traction_offsets(n); i < node_traction_offsets(n + 1); ++i) {
+          const Index face_id = node_traction_faces(i);
           const Index c = face_id / 6;
           const int f = face_id % 6;
           Vec3 q[4], w[4];
           int local = 0;
           for (int k = 0; k < 4; ++k) {
-            const Index node = m.cell_nodes(c, hex::faceNode(f, k));
-            q[k] = loadVec3(m.x_n, node);
+            const Index node = cell_nodes(c, hex::faceNode(f, k));
+            q[k] = loadVec3(x_n, node);
             if (node == n) local = k;
           }
           hex::faceCornerVectors(q, w);
-          const int side = m.cell_face_side(c, f);
-          const SymMat3 sigma_b{m.side_traction(side, 0), m.side_traction(side, 1),
-                                m.side_traction(side, 2), m.side_traction(side, 3),
-                                m.side_traction(side, 4), m.side_traction(side, 5)};
+          const int side = cell_face_side(c, f);
+          const SymMat3 sigma_b{side_traction(side, 0), side_traction(side, 1),
+                                side_traction(side, 2), side_traction(side, 3),
+                                side_traction(side, 4), side_traction(side, 5)};
           load += sigma_b * w[local];
         }
         Vec3 velocity;
         Vec3 reaction{0, 0, 0};  // force of the walls on the node
-        if (m.node_constrained(n)) {
-          const SymMat3 projector = loadSym(m.node_projector, n);
+        if (node_constrained(n)) {
+          const SymMat3 projector = loadSym(node_projector, n);
           const SymMat3 solver = inverse(detail::constrainedMatrix(projector, impedance));
           velocity = projector * (solver * (projector * (rhs + load)));
           // One step of iterative refinement: the tangential balance then

@@ -95,25 +95,34 @@ if [ ! -f "$kokkos/lib/cmake/Kokkos/KokkosConfig.cmake" ]; then
 fi
 say "kokkos: 3.4.01 CUDA+Serial Kokkos_ARCH_$arch_name in $kokkos"
 
-# --- lagremap, every target, against the stage (no compiler wrappers: the
-# MPI and HDF5 locations are given to CMake directly)
+# --- lagremap, every target, against the stage. No compiler wrappers: the
+# staged mpicc and h5pcc carry Debian's /usr paths, so the MPI and HDF5
+# locations go to CMake directly (an h5pcc that does not exist makes FindHDF5
+# take the given include directory and library), and pkg-config, whose .pc
+# files say the same, is kept out.
 build="$work/build-cuda"
+rm -f "$build/CMakeCache.txt"  # every location found anew, none cached from another run
 t0=$(date +%s)
-cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release -DKokkos_ROOT="$kokkos" \
+PKG_CONFIG_LIBDIR=/nonexistent PKG_CONFIG_PATH= \
+  cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release -DKokkos_ROOT="$kokkos" \
   -DCMAKE_CXX_COMPILER="$kokkos/bin/nvcc_wrapper" \
   -DCMAKE_PREFIX_PATH="$prefix/usr;$lib/cmake" \
   -DMPI_SKIP_COMPILER_WRAPPER=ON -DMPI_C_HEADER_DIR="$lib/openmpi/include" \
   -DMPI_CXX_HEADER_DIR="$lib/openmpi/include" -DMPI_C_LIB_NAMES=mpi -DMPI_CXX_LIB_NAMES=mpi \
-  -DMPI_mpi_LIBRARY="$lib/libmpi.so" -DMPIEXEC_EXECUTABLE="$prefix/usr/bin/orterun" \
-  -DHDF5_C_COMPILER_EXECUTABLE="$prefix/usr/bin/h5pcc.openmpi" \
+  -DMPI_C_ADDITIONAL_INCLUDE_DIRS="$lib/openmpi/include/openmpi" \
+  -DMPI_CXX_ADDITIONAL_INCLUDE_DIRS="$lib/openmpi/include/openmpi" \
+  -DMPI_mpi_LIBRARY="$lib/openmpi/lib/libmpi.so" -DMPIEXEC_EXECUTABLE="$prefix/usr/bin/orterun" \
+  -DHDF5_C_COMPILER_EXECUTABLE="$prefix/no-wrapper/h5pcc" \
   -DHDF5_C_INCLUDE_DIR="$prefix/usr/include/hdf5/openmpi" \
-  -DHDF5_C_LIBRARY_hdf5="$lib/hdf5/openmpi/libhdf5.so" \
+  -DHDF5_hdf5_LIBRARY_RELEASE="$lib/hdf5/openmpi/libhdf5.so" \
   > "$report/configure.txt" 2>&1 || die "configure (report/configure.txt)"
 cmake --build "$build" -j "$jobs" > "$report/build.txt" 2>&1 || die "build (report/build.txt)"
 warnings=$(grep -c -i 'warning' "$report/build.txt" || true)
 say "build: every target in $(($(date +%s) - t0)) s, $warnings warning lines (report/build.txt)"
-if command -v cuobjdump >/dev/null || [ -x "$CUDA_ROOT/bin/cuobjdump" ]; then
-  say "cuobjdump: $("$CUDA_ROOT/bin/cuobjdump" --list-elf "$build/lagremap" | head -n 1)"
+if [ -x "$CUDA_ROOT/bin/cuobjdump" ]; then
+  say "gpu code of lagremap: $("$CUDA_ROOT/bin/cuobjdump" --list-elf "$build/lagremap" | head -n 1)"
+elif command -v python3 >/dev/null; then
+  say "gpu code of lagremap: $(python3 "$here/scripts/cuda_arches.py" "$build/lagremap" | paste -sd ';')"
 fi
 
 if [ $gpu -eq 0 ]; then

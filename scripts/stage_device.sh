@@ -8,7 +8,7 @@
 #                                  unpacked into one prefix (usr/...), with every
 #                                  shared library they load except the C and C++
 #                                  runtimes the machine's compilers bring; static
-#                                  libraries other than GoogleTest's, Fortran
+#                                  libraries other than GoogleTest's and Benchmark's, Fortran
 #                                  bindings and documentation left out;
 #   DIR/MANIFEST.txt               the packages and versions, and the sizes.
 # Needs the functions and variables of setup.sh (cache, log, kokkos_source,
@@ -59,17 +59,18 @@ stage_device() {
     done < <(stage_needed_libs "$work/prefix")
     [ $added -eq 1 ] || break
   done
-  # Left out: static archives (GoogleTest's kept), Fortran, docs, manuals.
-  find "$work/prefix" -name '*.a' ! -name 'libgtest*.a' ! -name 'libgmock*.a' -delete
+  # Left out: static archives (GoogleTest's and Benchmark's kept: their CMake
+  # configs name them), Fortran, docs, manuals.
+  find "$work/prefix" -name '*.a' ! -name 'libgtest*.a' ! -name 'libgmock*.a' ! -name 'libbenchmark*.a' -delete
   rm -rf "$work/prefix/usr/share/doc" "$work/prefix/usr/share/man" "$work/prefix/usr/share/lintian" \
     "$work/prefix"/usr/lib/x86_64-linux-gnu/fortran
-  find "$work/prefix" -name '*fortran*' -delete
+  find "$work/prefix" \( -type f -o -type l \) -name 'lib*fortran*' -delete
   tar -cJf "$dir/debian-prefix.tar.xz" -C "$work/prefix" .
 
   {
     echo "lagremap device stage, made $(date -u +%Y-%m-%dT%H:%M:%SZ) on $(. /etc/os-release && echo "$PRETTY_NAME")"
     echo "packages:"
-    for deb in "$work"/debs/*.deb; do dpkg-deb -f "$deb" Package Version | paste -sd' ' | sed 's/^/  /'; done
+    for deb in "$work"/debs/*.deb; do dpkg-deb -W --showformat='  ${Package} ${Version}\n' "$deb"; done
     echo "sizes (bytes):"
     (cd "$dir" && stat -c '  %s %n' kokkos-3.4.01-src.tar.gz debian-prefix.tar.xz)
     echo "  unpacked prefix: $(du -sb "$work/prefix" | cut -f1)"
