@@ -29,6 +29,30 @@ else
   build_dir=${LAGREMAP_BUILD_DIR:-$here/build}
 fi
 
+# Kokkos' name of a CUDA compute capability (Kokkos_ARCH_<name>); fails for
+# one Kokkos 3.4.01 does not know.
+kokkos_cuda_arch_name() {
+  case "$1" in
+    70) echo VOLTA70 ;;
+    72) echo VOLTA72 ;;
+    75) echo TURING75 ;;
+    80) echo AMPERE80 ;;
+    86) echo AMPERE86 ;;
+    90) echo HOPPER90 ;;  # added to 3.4.01 by scripts/patches/kokkos-3.4.01-cuda.patch
+    *) echo "compute capability $1: Kokkos 3.4.01 knows 70 72 75 80 86 (90 with the project patch)" >&2
+       return 1 ;;
+  esac
+}
+
+# CMake options of a Kokkos CUDA + Serial build from the (patched) source SRC
+# for compute capability ARCH:  kokkos_cuda_options SRC ARCH
+kokkos_cuda_options() {
+  local name
+  name=$(kokkos_cuda_arch_name "$2") || return 1
+  echo "-DCMAKE_CXX_COMPILER=$1/bin/nvcc_wrapper -DKokkos_ENABLE_CUDA=ON -DKokkos_ENABLE_SERIAL=ON" \
+    "-DKokkos_ENABLE_CUDA_LAMBDA=ON -DKokkos_ARCH_$name=ON"
+}
+
 # nvcc on PATH, else the toolkit's usual place.
 find_nvcc() {
   if command -v nvcc >/dev/null 2>&1; then

@@ -72,28 +72,20 @@ export OPAL_PREFIX="$prefix/usr" OPAL_LIBDIR="$lib/openmpi/lib"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 
 # --- Kokkos (CUDA + Serial) from the staged, patched source
-kokkos_arch_name() {
-  case "$1" in
-    70) echo VOLTA70 ;; 72) echo VOLTA72 ;; 75) echo TURING75 ;;
-    80) echo AMPERE80 ;; 86) echo AMPERE86 ;; 90) echo HOPPER90 ;;
-    *) return 1 ;;
-  esac
-}
-arch_name=$(kokkos_arch_name "$cuda_arch") || die "compute capability $cuda_arch: Kokkos 3.4.01 (patched) knows 70 72 75 80 86 90"
+src="$work/kokkos-src/kokkos-3.4.01"
+cuda_options=$(kokkos_cuda_options "$src" "$cuda_arch") || die "no Kokkos 3.4.01 arch for sm_$cuda_arch"
 kokkos="$work/kokkos-sm$cuda_arch"
 if [ ! -f "$kokkos/lib/cmake/Kokkos/KokkosConfig.cmake" ]; then
-  src="$work/kokkos-src/kokkos-3.4.01"
+  # shellcheck disable=SC2086  # the options are words without spaces
   cmake -S "$src" -B "$work/kokkos-build" -DCMAKE_BUILD_TYPE=Release \
-    -DCMAKE_INSTALL_PREFIX="$kokkos" -DCMAKE_CXX_STANDARD=17 \
-    -DCMAKE_CXX_COMPILER="$src/bin/nvcc_wrapper" \
-    -DKokkos_ENABLE_CUDA=ON -DKokkos_ENABLE_SERIAL=ON -DKokkos_ENABLE_CUDA_LAMBDA=ON \
-    "-DKokkos_ARCH_$arch_name=ON" -DKokkos_ENABLE_TESTS=OFF -DBUILD_SHARED_LIBS=OFF \
+    -DCMAKE_INSTALL_PREFIX="$kokkos" -DCMAKE_CXX_STANDARD=17 $cuda_options \
+    -DKokkos_ENABLE_TESTS=OFF -DBUILD_SHARED_LIBS=OFF \
     > "$report/kokkos-build.txt" 2>&1 &&
     cmake --build "$work/kokkos-build" -j "$jobs" >> "$report/kokkos-build.txt" 2>&1 &&
     cmake --install "$work/kokkos-build" >> "$report/kokkos-build.txt" 2>&1 ||
     die "Kokkos build (report/kokkos-build.txt)"
 fi
-say "kokkos: 3.4.01 CUDA+Serial Kokkos_ARCH_$arch_name in $kokkos"
+say "kokkos: 3.4.01 CUDA+Serial $(echo "$cuda_options" | grep -o 'Kokkos_ARCH_[A-Z0-9]*') in $kokkos"
 
 # --- lagremap, every target, against the stage. No compiler wrappers: the
 # staged mpicc and h5pcc carry Debian's /usr paths, so the MPI and HDF5

@@ -105,18 +105,6 @@ patched_cuda_source() {
   echo "$patched"
 }
 
-# Kokkos' name of a CUDA compute capability (Kokkos_ARCH_<name>).
-kokkos_cuda_arch_name() {
-  case "$1" in
-    70) echo VOLTA70 ;;
-    72) echo VOLTA72 ;;
-    75) echo TURING75 ;;
-    80) echo AMPERE80 ;;
-    86) echo AMPERE86 ;;
-    90) echo HOPPER90 ;;  # added to 3.4.01 by the project patch
-    *) echo "setup: LAGREMAP_CUDA_ARCH=$1: Kokkos 3.4.01 knows 70 72 75 80 86 (90 with the patch)" >&2; exit 2 ;;
-  esac
-}
 
 if [ -n "${Kokkos_ROOT:-}" ]; then
   kokkos_found "$Kokkos_ROOT" || { echo "setup: Kokkos_ROOT=$Kokkos_ROOT has no KokkosConfig.cmake" >&2; exit 1; }
@@ -133,12 +121,10 @@ else
     rm -rf "$build"
     if [ "$backend" = cuda ]; then
       kokkos_src=$(patched_cuda_source "$kokkos_src")
-      arch_name=$(kokkos_cuda_arch_name "$cuda_arch")
+      cuda_options=$(kokkos_cuda_options "$kokkos_src" "$cuda_arch") || exit 2
+      # shellcheck disable=SC2086  # the options are words without spaces
       cmake -S "$kokkos_src" -B "$build" -DCMAKE_BUILD_TYPE=Release \
-        -DCMAKE_INSTALL_PREFIX="$kokkos_prefix" -DCMAKE_CXX_STANDARD=17 \
-        -DCMAKE_CXX_COMPILER="$kokkos_src/bin/nvcc_wrapper" \
-        -DKokkos_ENABLE_CUDA=ON -DKokkos_ENABLE_SERIAL=ON -DKokkos_ENABLE_CUDA_LAMBDA=ON \
-        "-DKokkos_ARCH_$arch_name=ON" \
+        -DCMAKE_INSTALL_PREFIX="$kokkos_prefix" -DCMAKE_CXX_STANDARD=17 $cuda_options \
         -DKokkos_ENABLE_TESTS=OFF -DKokkos_ENABLE_EXAMPLES=OFF \
         -DBUILD_SHARED_LIBS=OFF -DCMAKE_POSITION_INDEPENDENT_CODE=ON >/dev/null
     else
