@@ -403,10 +403,10 @@ int main(int argc, char* argv[]) {
   const SolidBench& beam = *g_beam;
   std::fprintf(stderr,
                "bench_constitutive: %ld cells per pointwise kernel; taylor %s (%d cells, %ld "
-               "yielded after %ld warm-up steps, t = %.3g), beam %s (%d cells); %s x %d\n",
+               "yielded after %ld warm-up steps, t = %.3g), beam %s (%d cells); %s\n",
                cells, taylor.meshText().c_str(), taylor.cells(), taylor.yieldedCells(),
                warmup_steps, taylor.time(), beam.meshText().c_str(), beam.cells(),
-               ExecSpace::name(), int(ExecSpace().concurrency()));
+               executionSpaceText().c_str());
   const std::string summary = "constitutive kernels over " + std::to_string(cells) +
                               " cells; full steps on taylor " + taylor.meshText() + " (" +
                               std::to_string(taylor.yieldedCells()) + " cells yielded) and beam " +

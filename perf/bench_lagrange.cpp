@@ -418,9 +418,9 @@ int main(int argc, char* argv[]) {
   }
   const Bench& b = *g_bench;
   std::fprintf(stderr,
-               "bench_lagrange: sedov %d^3 (%d cells, %d nodes), %s x %d, warm-up %ld steps "
+               "bench_lagrange: sedov %d^3 (%d cells, %d nodes), %s, warm-up %ld steps "
                "(t = %.3g, %.1f s), %ld shocked cells, bench dt = %.3g\n",
-               n, b.cells(), b.nodes(), ExecSpace::name(), int(ExecSpace().concurrency()),
+               n, b.cells(), b.nodes(), executionSpaceText().c_str(),
                warmup_steps, b.time(), b.warmupSeconds(), b.shockedCells(), b.dtBench());
   benchmark::AddCustomContext("problem", "sedov");
   benchmark::AddCustomContext("n", std::to_string(n));

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "kokkos_session.hpp"
 #include "parallel.hpp"
 #include "run.hpp"
 #include "timers.hpp"
@@ -39,8 +40,8 @@ void printReport(const RunOptions& options, const RunResult& result) {
     std::printf("check %-22s %-13.6g reference %-12.6g tolerance %-10.3g %s\n", check.name.c_str(),
                 check.value, check.reference, check.tolerance, check.pass() ? "pass" : "FAIL");
   }
-  std::printf("FOM: %.4g cell-steps/s (%s, %d threads)\n", result.cell_steps_per_second,
-              ExecSpace::name(), int(ExecSpace().concurrency()));
+  std::printf("FOM: %.4g cell-steps/s (%s)\n", result.cell_steps_per_second,
+              executionSpaceText().c_str());
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 #include "kokkos_session.hpp"
 
-#include <Kokkos_Core.hpp>
+#include "types.hpp"
 
 namespace lagremap {
 
@@ -36,5 +36,15 @@ KokkosSession::KokkosSession(int& argc, char* argv[]) {
 }
 
 KokkosSession::~KokkosSession() { Kokkos::finalize(); }
+
+bool executionSpaceIsHost() {
+  return Kokkos::SpaceAccessibility<Kokkos::HostSpace, ExecSpace::memory_space>::accessible;
+}
+
+std::string executionSpaceText() {
+  const std::string count = std::to_string(ExecSpace().concurrency());
+  return std::string(ExecSpace::name()) +
+         (executionSpaceIsHost() ? ", " + count + " threads" : ", concurrency " + count);
+}
 
 }  // namespace lagremap

@@ -28,4 +28,10 @@ class KokkosSession {
 const char* kokkosThreadsFlag();
 std::string withKokkosThreadsSpelling(const std::string& argument);
 
+// Whether the execution space runs on the host (OpenMP, Serial, Threads).
+bool executionSpaceIsHost();
+// The execution space for reports: "OpenMP, 2 threads" on the host,
+// "Cuda, concurrency 270336" on a GPU (where threads are not the user's choice).
+std::string executionSpaceText();
+
 }  // namespace lagremap

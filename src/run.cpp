@@ -17,6 +17,7 @@
 #include "diagnostics.hpp"
 #include "io/snapshot_writer.hpp"
 #include "json.hpp"
+#include "kokkos_session.hpp"
 #include "lagrange_step.hpp"
 #include "parallel.hpp"
 #include "remap_step.hpp"
@@ -683,7 +684,8 @@ RunResult runProblem(const RunOptions& options) {
       .value("mode", options.mode)
       .value("order", numerics.order)
       .value("gather", config.text("numerics.gather"))
-      .value("threads", long(ExecSpace().concurrency()))
+      .value("threads", executionSpaceIsHost() ? long(ExecSpace().concurrency()) : 0L)
+      .value("concurrency", long(ExecSpace().concurrency()))
       .value("execution_space", ExecSpace::name())
       .value("cells", mesh.n_global_cells)
       .value("nodes", mesh.n_global_nodes)
