@@ -100,6 +100,23 @@ KOKKOS_INLINE_FUNCTION void sweptFace(const Vec3 q_lag[4], const Vec3 q_target[4
   }
 }
 
+// True when a face's Lagrangian and target positions all lie in one plane
+// normal to a coordinate axis: a wall or symmetry plane along x, y or z, in
+// which the nodes slide (their projected velocity has an exact zero normal
+// component). The region it sweeps is flat, so dV_t = 0 and sweptVolume gives
+// exactly 0 too (every cross product is normal to the plane, every
+// displacement in it): a one-cell slab's two faces on its symmetry planes,
+// half of its swept faces, need no swept-region computation.
+KOKKOS_INLINE_FUNCTION bool staysInOneAxisPlane(const Vec3 q_lag[4], const Vec3 q_target[4]) {
+  bool same[3] = {true, true, true};
+  for (int k = 0; k < 4; ++k) {
+    same[0] = same[0] && q_lag[k].x == q_lag[0].x && q_target[k].x == q_lag[0].x;
+    same[1] = same[1] && q_lag[k].y == q_lag[0].y && q_target[k].y == q_lag[0].y;
+    same[2] = same[2] && q_lag[k].z == q_lag[0].z && q_target[k].z == q_lag[0].z;
+  }
+  return same[0] || same[1] || same[2];
+}
+
 }  // namespace swept
 
 // Storage of the swept regions: one slot per (cell, face, triangle),
@@ -153,7 +170,11 @@ inline void computeSweptFaces(const Mesh& mesh, const Vec3View& x_lag, const Vec
           hex::faceNodes(x_cell_lag, f, q_lag);
           hex::faceNodes(x_cell_target, f, q_target);
           swept::SweptRegion swept[4];
-          swept::sweptFace(q_lag, q_target, swept);
+          if (neighbor < 0 && swept::staysInOneAxisPlane(q_lag, q_target)) {
+            for (int k = 0; k < 4; ++k) swept[k] = {0.0, Vec3{0.0, 0.0, 0.0}};
+          } else {
+            swept::sweptFace(q_lag, q_target, swept);
+          }
           for (int k = 0; k < 4; ++k) {
             const Index t = sweptTriangleId(c, f, k);
             dvol_t(t) = swept[k].volume;

@@ -86,6 +86,42 @@ void cellNodes(const NodeView& x_n, const CellNodeView& cell_nodes, Index c, Vec
 // DESIGN §5: V_new = V_lag + sum_t dV_t and (V x_c)_new = (V x_c)_lag + sum_t M_t
 // for every cell, with the face points of both meshes and non-planar faces
 // everywhere; boundary faces included (sliding or free).
+// computeSweptFaces skips a boundary face that stays in one axis plane (a wall
+// or symmetry plane the nodes slide in): it must be recognised, and the full
+// computation must give exactly 0 for it (so the skip changes no bit); one
+// node off the plane, or a plane not normal to an axis, is not skipped.
+TEST(SweptFace, FaceSlidingInAnAxisPlaneSweepsExactlyNothing) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (int axis = 0; axis < 3; ++axis) {
+    for (int trial = 0; trial < 50; ++trial) {
+      const double plane = 10.0 * unit(rng);
+      auto on_plane = [&](double amplitude) {
+        Vec3 x = randomVec3(rng, amplitude);
+        (axis == 0 ? x.x : axis == 1 ? x.y : x.z) = plane;
+        return x;
+      };
+      Vec3 q_lag[4], q_target[4];
+      for (int k = 0; k < 4; ++k) {
+        q_target[k] = on_plane(1.0);
+        q_lag[k] = q_target[k] + on_plane(0.3);  // in-plane displacement
+        (axis == 0 ? q_lag[k].x : axis == 1 ? q_lag[k].y : q_lag[k].z) = plane;
+      }
+      ASSERT_TRUE(swept::staysInOneAxisPlane(q_lag, q_target));
+      SweptRegion regions[4];
+      swept::sweptFace(q_lag, q_target, regions);
+      for (int k = 0; k < 4; ++k) EXPECT_EQ(regions[k].volume, 0.0) << axis << " " << trial;
+      Vec3 off = q_lag[2];
+      (axis == 0 ? off.x : axis == 1 ? off.y : off.z) += 1e-12;
+      Vec3 q_off[4] = {q_lag[0], q_lag[1], off, q_lag[3]};
+      EXPECT_FALSE(swept::staysInOneAxisPlane(q_off, q_target));
+    }
+  }
+  // A plane x + y = 1 (not normal to an axis) is left to the full computation.
+  const Vec3 q[4] = {{1, 0, 0}, {0, 1, 0}, {0, 1, 1}, {1, 0, 1}};
+  EXPECT_FALSE(swept::staysInOneAxisPlane(q, q));
+}
+
 TEST(SweptFace, CellRegionsTelescopeToTheVolumeAndMomentChange) {
   for (const bool free_boundary : {false, true}) {
     const SweptMeshCase sc = distortedCase(free_boundary, 314u);
