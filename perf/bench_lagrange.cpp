@@ -355,7 +355,7 @@ void BM_LagrangeRemapStep(benchmark::State& state) {
     Kokkos::Timer timer;
     lagrange.advance(dt, ++step);
     remap.apply();
-    const StepLimit limit = lagrange.computeGeometry();
+    const StepLimit limit = lagrange.computeGeometry(remap.targetGeometry());
     Kokkos::fence();
     state.SetIterationTime(timer.seconds());
     if (limit.val < dt) {

@@ -46,6 +46,11 @@ StepLimit LagrangeStep::computeGeometry() {
   return overAllRanks(lagremap::computeGeometry(mesh_, state_, numerics_.step));
 }
 
+StepLimit LagrangeStep::computeGeometry(const CellGeometryView& known_geometry) {
+  auto scope = timers_.scope(Phase::Geometry);
+  return overAllRanks(lagremap::computeGeometry(mesh_, state_, numerics_.step, known_geometry));
+}
+
 StepLimit LagrangeStep::advance(double dt, long step) {
   saveStartOfStep();
   if (numerics_.order == 1) return stage(dt);  // forward Euler

@@ -35,6 +35,7 @@ RemapStep::RemapStep(Mesh& mesh, State& state, const RemapControls& controls, Ph
   const Index n_cells = mesh.n_cells;
   x_target_ = Vec3View("lagremap::remap::x_target", mesh.n_nodes);
   Kokkos::deep_copy(x_target_, mesh.x_n);
+  target_geometry_ = fixedMeshGeometry(mesh);
   density_ = MatRealView("lagremap::remap::density", n_cells, layout_.n_variables);
   gradient_ = DeviceView<Real** [3]>("lagremap::remap::gradient", n_cells, layout_.n_variables);
   reach_ = RealView("lagremap::remap::reach", n_cells);

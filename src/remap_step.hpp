@@ -5,6 +5,7 @@
 // and the caller recomputes the geometry (the next step's time step).
 #pragma once
 
+#include "../kernels/geometry.hpp"
 #include "../kernels/remap.hpp"
 #include "decomposition.hpp"
 #include "mesh.hpp"
@@ -34,6 +35,8 @@ class RemapStep {
 
   const RemapLayout& layout() const { return layout_; }
   const Vec3View& targetPositions() const { return x_target_; }
+  // Geometry of the target mesh, where apply() leaves the nodes.
+  const CellGeometryView& targetGeometry() const { return target_geometry_; }
 
  private:
   Mesh& mesh_;
@@ -43,6 +46,7 @@ class RemapStep {
   const Halo* halo_;
   RemapLayout layout_;
   Vec3View x_target_;
+  CellGeometryView target_geometry_;
   MatRealView density_;              // (cell, variable) per unit volume
   DeviceView<Real** [3]> gradient_;  // (cell, variable, xyz), limited
   RealView reach_;                   // largest centroid-vertex distance of each Lagrangian cell

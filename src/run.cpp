@@ -590,7 +590,7 @@ RunResult runProblem(const RunOptions& options) {
       if (limit.val < 0.0) throw RunFailure(describeInvalidCell(limit, step + 1, "end of step"));
       if (remap) {  // back onto the initial mesh (DESIGN §5), then its time step
         crossed = remap->apply();
-        limit = lagrange.computeGeometry();
+        limit = lagrange.computeGeometry(remap->targetGeometry());
         if (limit.val < 0.0) {
           remap->restoreStartOfStep();
           throw RunFailure(describeInvalidCell(limit, step + 1, "after the remap"));
