@@ -50,7 +50,7 @@ void declareBall(Config& config) {
   config.addReal("gas.p", 1e-5, "Pa", "pressure of the surrounding gas");
   config.addReal("gas.gamma", 1.4, "-", "ratio of specific heats of the gas");
   // One cell thick: about the in-plane cell size (23.3 x 25 microns), so that z does not set dt.
-  config.addReal("geometry.thickness", 2.5e-5, "m", "slab thickness along z (one cell)");
+  config.addCellLength("geometry.thickness", 2.5e-5, "slab thickness along z (one cell)");
   declareMeshKeys(config, 150, 200, 1);
   declareBoundaryKeys(config, {"wall", "wall", "wall", "wall", "symmetry", "symmetry"});
   config.addReal("check.momentum_tolerance", 1e-4, "-",

@@ -40,11 +40,11 @@ void declareShell(Config& config) {
     config.addReal("gas.p", 1e5, "Pa", "pressure of the gas");
     config.addReal("gas.gamma", 1.4, "-", "ratio of specific heats of the gas");
     // One cell thick: the in-plane cell size 0.22 / 160, so that z does not set dt.
-    config.addReal("geometry.thickness", 1.375e-3, "m", "slab thickness along z (one cell)");
+    config.addCellLength("geometry.thickness", 1.375e-3, "slab thickness along z (one cell)");
     declareMeshKeys(config, 160, 160, 1);
     declareBoundaryKeys(config, {"wall", "wall", "wall", "wall", "symmetry", "symmetry"});
   } else {
-    config.addReal("geometry.thickness", 1.25e-3, "m", "slab thickness along z (one cell)");
+    config.addCellLength("geometry.thickness", 1.25e-3, "slab thickness along z (one cell)");
     // mesh.nx: radial cells, mesh.ny: cells over the quarter circle
     declareMeshKeys(config, 15, 90, 1);
     declareBoundaryKeys(config, {"free", "free", "symmetry", "symmetry", "symmetry", "symmetry"});

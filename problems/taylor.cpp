@@ -25,7 +25,7 @@ void declareTaylor(Config& config) {
   config.addReal("bar.vx", -150.0, "m/s", "impact velocity");
   config.addReal("geometry.length", 5.0, "m", "bar length along x");
   config.addReal("geometry.height", 1.0, "m", "bar height along y");
-  config.addReal("geometry.thickness", 0.025, "m", "slab thickness along z (one cell)");
+  config.addCellLength("geometry.thickness", 0.025, "slab thickness along z (one cell)");
   if (config.remapMode()) {
     config.addReal("domain.length", 5.5, "m", "fixed mesh extent along x (remap)");
     config.addReal("domain.height", 2.0, "m", "fixed mesh extent along y (remap)");

@@ -6,7 +6,7 @@
 #                                        out/taylor, and its lagrange reference at the
 #                                        same cell size into out/taylor_lagrange, then
 #                                        the overlays (lagrange solid, remap dashed);
-#                                        about 45 s on 2 cores
+#                                        about 25 s on 2 cores once built
 #   scripts/run.sh --problem sedov ...   any lagremap arguments
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)

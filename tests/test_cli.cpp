@@ -78,6 +78,26 @@ TEST(CommandLine, MalformedInputGivesExitCodeTwoAndOneLine) {
   std::filesystem::remove_all(dir);
 }
 
+// --scale multiplies cell counts and divides a one-cell slab's thickness left
+// at its default (the slab stays one cell thick, so it does not set the time
+// step of a coarser run); a thickness the user sets is kept.
+TEST(CommandLine, ScaleKeepsASlabOneCellThick) {
+  Config config;
+  config.addInteger("mesh.nx", 200, "cells", true);
+  config.addCellLength("geometry.thickness", 0.025, "one cell");
+  config.scaleCellCounts(0.5);
+  EXPECT_EQ(config.integer("mesh.nx"), 100);
+  EXPECT_DOUBLE_EQ(config.real("geometry.thickness"), 0.05);
+  Config set_by_user;
+  set_by_user.addCellLength("geometry.thickness", 0.025, "one cell");
+  set_by_user.set("geometry.thickness", "0.01");
+  set_by_user.scaleCellCounts(0.5);
+  EXPECT_DOUBLE_EQ(set_by_user.real("geometry.thickness"), 0.01);
+  // A half-resolution taylor run's slab is one of its cells thick (0.05 m).
+  const auto half = runLagremap("--problem taylor --scale 0.5 --print-config");
+  EXPECT_NE(half.output.find("geometry.thickness=0.05 "), std::string::npos) << half.output;
+}
+
 TEST(CommandLine, ListHelpAndPrintConfig) {
   const auto list = runLagremap("--list");
   EXPECT_EQ(list.exit_code, 0);

@@ -76,6 +76,10 @@ void Config::addReal(const std::string& key, double value, const std::string& un
   add({key, ParamType::Real, formatReal(value), "", unit, help, {}, false});
 }
 
+void Config::addCellLength(const std::string& key, double value, const std::string& help) {
+  add({key, ParamType::Real, formatReal(value), "", "m", help, {}, false, true});
+}
+
 void Config::addInteger(const std::string& key, long value, const std::string& help,
                         bool cell_count) {
   add({key, ParamType::Integer, std::to_string(value), "", "-", help, {}, cell_count});
@@ -207,6 +211,10 @@ void Config::loadDeck(const std::string& path, std::string* problem, std::string
 
 void Config::scaleCellCounts(double scale) {
   for (auto& [key, param] : params_) {
+    // A cell length the user set (deck, --set) is the length they asked for.
+    if (param.cell_length && param.value == param.default_value) {
+      param.value = formatReal(real(key) / scale);
+    }
     if (!param.cell_count) continue;
     const long count = integer(key);
     if (count > 1) {

@@ -26,12 +26,18 @@ struct Param {
   std::string help;
   std::vector<std::string> choices;  // for ParamType::Choice
   bool cell_count = false;           // scaled by --scale
+  bool cell_length = false;          // one cell's size (a slab's thickness): divided by --scale
 };
 
 class Config {
  public:
   void addReal(const std::string& key, double value, const std::string& unit,
                const std::string& help);
+  // A length of one cell, e.g. the thickness of a one-cell slab: --scale divides
+  // its default as it multiplies the cell counts, so the slab stays about one
+  // cell thick and its thickness does not set the time step of a coarser run;
+  // a value the user sets is kept as it is.
+  void addCellLength(const std::string& key, double value, const std::string& help);
   void addInteger(const std::string& key, long value, const std::string& help,
                   bool cell_count = false);
   void addText(const std::string& key, const std::string& value, const std::string& help);
@@ -52,7 +58,8 @@ class Config {
   void loadDeck(const std::string& path, std::string* problem, std::string* mode);
   // Reads only the top-level `problem` and `mode` of a deck (empty if absent).
   static void peekDeck(const std::string& path, std::string* problem, std::string* mode);
-  // Multiplies every cell-count key with a value > 1 by `scale` (--scale).
+  // Multiplies every cell-count key with a value > 1 by `scale` and divides
+  // every cell length left at its default by it (--scale).
   void scaleCellCounts(double scale);
 
   bool has(const std::string& key) const { return params_.count(key) != 0; }
