@@ -256,9 +256,11 @@ KOKKOS_INLINE_FUNCTION CellThermo cellThermo(const State& s, Index c, double vol
 // candidates folded into `best` (DESIGN §2-3).
 // `end_of_stage`: the nodes have just moved in a Lagrangian stage, so a mixed
 // cell's volume change is shared among its materials first.
+// `corner_terms` false: no corner vectors and impedances (geo has none).
 KOKKOS_INLINE_FUNCTION void cellThermoOnGeometry(const hex::CellGeometry& geo, const State& s,
                                                  const TimeStepControls& controls, Index c,
-                                                 StepLimit& best, bool end_of_stage) {
+                                                 StepLimit& best, bool end_of_stage,
+                                                 bool corner_terms = true) {
   const double volume = geo.shape.volume;
   s.vol_c(c) = volume;
   storeVec3(s.x_c, c, geo.shape.centroid);
@@ -280,7 +282,7 @@ KOKKOS_INLINE_FUNCTION void cellThermoOnGeometry(const hex::CellGeometry& geo, c
 
   // Corner impedance (DESIGN §3, nodal solver) from the corner-face sums.
   const double rho_aL = rho * aL, rho_aT = rho * aT;
-  for (int p = 0; p < 8; ++p) {
+  for (int p = 0; p < (corner_terms ? 8 : 0); ++p) {
     SymMat3 impedance = (rho_aL - rho_aT) * geo.normal_moment[p];
     impedance += identitySym(rho_aT * geo.corner_face_area[p]);
     storeVec3(s.A_cp, 8 * c + p, geo.corner[p]);
@@ -294,16 +296,24 @@ KOKKOS_INLINE_FUNCTION void cellThermoOnGeometry(const hex::CellGeometry& geo, c
                 finite_state, thermo.valid);
 }
 
-// The same, the geometry computed from the cell's nodes.
+// The same, the geometry computed from the cell's nodes. `corner_terms` false
+// where nothing reads the corner vectors and impedances before the geometry is
+// computed again (the end of a step the remap follows): volume, centroid and
+// thermodynamics only, without the 24 corner-face normals.
 KOKKOS_INLINE_FUNCTION void cellGeometryAndThermo(const CellNodesView& cell_nodes,
                                                   const Vec3View& x_n, const State& s,
                                                   const TimeStepControls& controls, Index c,
-                                                  StepLimit& best, bool end_of_stage = false) {
+                                                  StepLimit& best, bool end_of_stage = false,
+                                                  bool corner_terms = true) {
   Vec3 x[8];
   gatherCellNodes(cell_nodes, x_n, c, x);
   hex::CellGeometry geo;
-  hex::cellGeometry(x, geo);
-  cellThermoOnGeometry(geo, s, controls, c, best, end_of_stage);
+  if (corner_terms) {
+    hex::cellGeometry<true>(x, geo);
+  } else {
+    hex::cellGeometry<false>(x, geo);
+  }
+  cellThermoOnGeometry(geo, s, controls, c, best, end_of_stage, corner_terms);
 }
 
 // The geometry of every cell of a mesh that does not move: the remap's target,

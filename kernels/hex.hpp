@@ -100,6 +100,9 @@ struct CellGeometry {
   CellShape shape;
 };
 
+// kCornerSums = false: g.shape only (the corner arrays are left as they are),
+// with the same arithmetic, so the same bits, as the full sweep.
+template <bool kCornerSums = true>
 KOKKOS_INLINE_FUNCTION void cellGeometry(const Vec3 x[8], CellGeometry& g) {
   const Vec3 origin = x[0];
   // Constant factors are folded out of the 24-triangle loop: with the doubled
@@ -111,10 +114,12 @@ KOKKOS_INLINE_FUNCTION void cellGeometry(const Vec3 x[8], CellGeometry& g) {
   double six_volume = 0.0, max_area2 = 0.0;
   Vec3 weighted_sum{0.0, 0.0,
                     0.0};  // sum (q_k . T_k)(q_k + q_k+1 + face point), relative to origin
-  for (int p = 0; p < 8; ++p) {
-    g.corner[p] = Vec3{0.0, 0.0, 0.0};
-    g.normal_moment[p] = SymMat3{0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
-    g.corner_face_area[p] = 0.0;
+  if constexpr (kCornerSums) {
+    for (int p = 0; p < 8; ++p) {
+      g.corner[p] = Vec3{0.0, 0.0, 0.0};
+      g.normal_moment[p] = SymMat3{0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+      g.corner_face_area[p] = 0.0;
+    }
   }
   LAGREMAP_UNROLL
   for (int f = 0; f < 6; ++f) {
@@ -129,6 +134,7 @@ KOKKOS_INLINE_FUNCTION void cellGeometry(const Vec3 x[8], CellGeometry& g) {
       const double weight = dot(q[k], doubled[k]);
       six_volume += weight;
       weighted_sum += weight * (q[k] + q[(k + 1) & 3] + face_point);
+      if constexpr (!kCornerSums) continue;
       // s_pf n_pf = 1/3 (t_k-1 + t_k + 1/4 face) = 1/6 (T_k-1 + T_k + 1/4 sum T)
       const Vec3 w = (1.0 / 6.0) * (doubled[(k + 3) & 3] + doubled[k] + 0.25 * doubled_face);
       const int p = faceNode(f, k);

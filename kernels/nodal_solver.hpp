@@ -594,8 +594,10 @@ inline void updateCells(const Mesh& mesh, const State& state, double dt_stage) {
 // closure at the new node positions (both cell-local, so one kernel does them
 // while the cell's corner records are in cache); returns the time-step
 // candidates of the new state. Same results as updateCells + computeGeometry.
+// `corner_terms`: see cellGeometryAndThermo.
 inline StepLimit updateCellsAndGeometry(const Mesh& mesh, const State& state, double dt_stage,
-                                        const TimeStepControls& controls) {
+                                        const TimeStepControls& controls,
+                                        bool corner_terms = true) {
   const auto cell_nodes = mesh.cell_nodes;
   const auto x_n = mesh.x_n;
   const auto owned = mesh.cell_owned;
@@ -606,7 +608,8 @@ inline StepLimit updateCellsAndGeometry(const Mesh& mesh, const State& state, do
       KOKKOS_LAMBDA(const Index c, StepLimit& best) {
         updateCell(cell_nodes, x_n, s, dt_stage, c);
         StepLimit ghost{};  // a ghost cell's candidates are its owner's to propose
-        cellGeometryAndThermo(cell_nodes, x_n, s, controls, c, owned(c) ? best : ghost, true);
+        cellGeometryAndThermo(cell_nodes, x_n, s, controls, c, owned(c) ? best : ghost, true,
+                              corner_terms);
       },
       StepLimitReducer(limit));
   return limit;

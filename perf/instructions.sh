@@ -52,10 +52,9 @@ def kernel_name(symbol):
     """The kernel a symbol belongs to: the lagremap function whose lambda it is
     (Kokkos' dispatch of it included), else the function itself."""
     symbol = re.sub(r"\[.*\]$", "", symbol).strip()
-    m = re.search(r"lagremap::(?:[A-Za-z_]+::)*([A-Za-z_]+)\(", symbol)
-    if m and ("ParallelFor" in symbol or "ParallelReduce" in symbol or "lambda" in symbol
-              or symbol.startswith("lagremap::") or symbol.startswith("???:lagremap::")):
-        qualified = re.search(r"lagremap::((?:[A-Za-z_]+::)*[A-Za-z_]+)\(", symbol).group(1)
+    m = re.search(r"lagremap::(?:[A-Za-z_]+::)*([A-Za-z_]+)(?:<[^()]*>)?\(", symbol)
+    if m:
+        qualified = re.search(r"lagremap::((?:[A-Za-z_]+::)*[A-Za-z_]+)(?:<[^()]*>)?\(", symbol).group(1)
         return qualified
     return re.sub(r"\(.*", "", symbol.split(":", 1)[-1])[:60]
 

@@ -53,14 +53,14 @@ StepLimit LagrangeStep::computeGeometry(const CellGeometryView& known_geometry) 
 
 StepLimit LagrangeStep::advance(double dt, long step) {
   saveStartOfStep();
-  if (numerics_.order == 1) return stage(dt);  // forward Euler
+  if (numerics_.order == 1) return stage(dt, true);  // forward Euler
   // predictor: nodal velocities of t^n carry the state to t^{n+1/2}
-  const StepLimit half_step = stage(0.5 * dt);
+  const StepLimit half_step = stage(0.5 * dt, false);
   if (half_step.val < 0.0) throw RunFailure(describeInvalidCell(half_step, step, "predictor"));
-  return stage(dt);  // corrector: forces and velocities of t^{n+1/2} carry t^n to t^{n+1}
+  return stage(dt, true);  // corrector: forces and velocities of t^{n+1/2} carry t^n to t^{n+1}
 }
 
-StepLimit LagrangeStep::stage(double dt_stage) {
+StepLimit LagrangeStep::stage(double dt_stage, bool last_stage) {
   const CornerControls corner_controls{numerics_.order, numerics_.gather};
   {
     auto scope = timers_.scope(Phase::Corners);
@@ -79,7 +79,8 @@ StepLimit LagrangeStep::stage(double dt_stage) {
   StepLimit limit;
   {
     auto scope = timers_.scope(Phase::CellUpdate);
-    limit = updateCellsAndGeometry(mesh_, state_, dt_stage, numerics_.step);
+    limit = updateCellsAndGeometry(mesh_, state_, dt_stage, numerics_.step,
+                                   !last_stage || corner_terms_after_step_);
   }
   if (halo_) {
     auto scope = timers_.scope(Phase::Halo);

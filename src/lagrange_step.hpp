@@ -56,10 +56,16 @@ class LagrangeStep {
   void restoreStartOfStep();
   // Copies the current state as the start of a step.
   void saveStartOfStep();
+  // The remap follows every step and computes the geometry again on its
+  // target mesh: the last stage of a step then leaves the corner vectors and
+  // impedances uncomputed (nothing reads them before that).
+  void remapFollowsEveryStep() { corner_terms_after_step_ = false; }
 
  private:
-  // Corner terms, nodal solve, then cell update and geometry at the new positions.
-  StepLimit stage(double dt_stage);
+  // Corner terms, nodal solve, then cell update and geometry at the new
+  // positions (without its corner terms for the last stage of a step that the
+  // remap follows).
+  StepLimit stage(double dt_stage, bool last_stage);
   // The smallest candidate over every rank's owned cells, located by global cell id.
   StepLimit overAllRanks(StepLimit limit) const;
 
@@ -68,6 +74,7 @@ class LagrangeStep {
   Numerics numerics_;
   PhaseTimers& timers_;
   const Halo* halo_;
+  bool corner_terms_after_step_ = true;
 };
 
 }  // namespace lagremap

@@ -452,6 +452,7 @@ RunResult runProblem(const RunOptions& options) {
     } catch (const std::invalid_argument& error) {
       throw ConfigError(options.problem + ": " + error.what());
     }
+    lagrange.remapFollowsEveryStep();
   }
 
   // --- restart (DESIGN §6): the evolved state and the loop's counters of a
