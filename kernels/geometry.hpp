@@ -338,23 +338,34 @@ inline CellGeometryView fixedMeshGeometry(const Mesh& mesh) {
   return geometry;
 }
 
+// The smallest time-step candidate over a mesh's cells: `cell(c, best)`
+// updates cell c and folds its candidates into `best`. A ghost cell's go to a
+// scratch value: they are its owner's to propose.
+template <class CellUpdate>
+StepLimit stepLimitOverCells(const char* label, const Mesh& mesh, const CellUpdate& cell) {
+  const auto owned = mesh.cell_owned;
+  StepLimit limit;
+  Kokkos::parallel_reduce(
+      label, Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
+      KOKKOS_LAMBDA(const Index c, StepLimit& best) {
+        StepLimit ghost{};
+        cell(c, owned(c) ? best : ghost);
+      },
+      StepLimitReducer(limit));
+  return limit;
+}
+
 // Returns the smallest time-step candidate (or a negative value and the
 // failure code for an invalid cell).
 inline StepLimit computeGeometry(const Mesh& mesh, const State& state,
                                  const TimeStepControls& controls) {
   const auto cell_nodes = mesh.cell_nodes;
   const auto x_n = mesh.x_n;
-  const auto owned = mesh.cell_owned;
   const auto s = state;
-  StepLimit limit;
-  Kokkos::parallel_reduce(
-      "lagremap::geometry::cells", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
-      KOKKOS_LAMBDA(const Index c, StepLimit& best) {
-        StepLimit ghost{};  // a ghost cell's candidates are its owner's to propose
-        cellGeometryAndThermo(cell_nodes, x_n, s, controls, c, owned(c) ? best : ghost);
-      },
-      StepLimitReducer(limit));
-  return limit;
+  return stepLimitOverCells("lagremap::geometry::cells", mesh,
+                            KOKKOS_LAMBDA(const Index c, StepLimit& best) {
+                              cellGeometryAndThermo(cell_nodes, x_n, s, controls, c, best);
+                            });
 }
 
 // The same on a mesh whose geometry is known (fixedMeshGeometry of the mesh
@@ -362,17 +373,11 @@ inline StepLimit computeGeometry(const Mesh& mesh, const State& state,
 inline StepLimit computeGeometry(const Mesh& mesh, const State& state,
                                  const TimeStepControls& controls,
                                  const CellGeometryView& geometry) {
-  const auto owned = mesh.cell_owned;
   const auto s = state;
-  StepLimit limit;
-  Kokkos::parallel_reduce(
-      "lagremap::geometry::cells_on_fixed_mesh", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
-      KOKKOS_LAMBDA(const Index c, StepLimit& best) {
-        StepLimit ghost{};
-        cellThermoOnGeometry(geometry(c), s, controls, c, owned(c) ? best : ghost, false);
-      },
-      StepLimitReducer(limit));
-  return limit;
+  return stepLimitOverCells("lagremap::geometry::cells_on_fixed_mesh", mesh,
+                            KOKKOS_LAMBDA(const Index c, StepLimit& best) {
+                              cellThermoOnGeometry(geometry(c), s, controls, c, best, false);
+                            });
 }
 
 }  // namespace lagremap

@@ -600,19 +600,13 @@ inline StepLimit updateCellsAndGeometry(const Mesh& mesh, const State& state, do
                                         bool corner_terms = true) {
   const auto cell_nodes = mesh.cell_nodes;
   const auto x_n = mesh.x_n;
-  const auto owned = mesh.cell_owned;
   const auto s = state;
-  StepLimit limit;
-  Kokkos::parallel_reduce(
-      "lagremap::cell_update::update_and_geometry", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
-      KOKKOS_LAMBDA(const Index c, StepLimit& best) {
-        updateCell(cell_nodes, x_n, s, dt_stage, c);
-        StepLimit ghost{};  // a ghost cell's candidates are its owner's to propose
-        cellGeometryAndThermo(cell_nodes, x_n, s, controls, c, owned(c) ? best : ghost, true,
-                              corner_terms);
-      },
-      StepLimitReducer(limit));
-  return limit;
+  return stepLimitOverCells("lagremap::cell_update::update_and_geometry", mesh,
+                            KOKKOS_LAMBDA(const Index c, StepLimit& best) {
+                              updateCell(cell_nodes, x_n, s, dt_stage, c);
+                              cellGeometryAndThermo(cell_nodes, x_n, s, controls, c, best, true,
+                                                    corner_terms);
+                            });
 }
 
 }  // namespace lagremap
