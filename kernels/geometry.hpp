@@ -325,9 +325,9 @@ using CellGeometryView = DeviceView<hex::CellGeometry*>;
 inline CellGeometryView fixedMeshGeometry(const Mesh& mesh) {
   const auto cell_nodes = mesh.cell_nodes;
   const auto x_n = mesh.x_n;
-  CellGeometryView geometry(Kokkos::view_alloc(Kokkos::WithoutInitializing,
-                                               "lagremap::remap::target_geometry"),
-                            mesh.n_cells);
+  CellGeometryView geometry(
+      Kokkos::view_alloc(Kokkos::WithoutInitializing, "lagremap::remap::target_geometry"),
+      mesh.n_cells);
   Kokkos::parallel_for(
       "lagremap::remap::target_geometry", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
       KOKKOS_LAMBDA(const Index c) {
@@ -362,10 +362,10 @@ inline StepLimit computeGeometry(const Mesh& mesh, const State& state,
   const auto cell_nodes = mesh.cell_nodes;
   const auto x_n = mesh.x_n;
   const auto s = state;
-  return stepLimitOverCells("lagremap::geometry::cells", mesh,
-                            KOKKOS_LAMBDA(const Index c, StepLimit& best) {
-                              cellGeometryAndThermo(cell_nodes, x_n, s, controls, c, best);
-                            });
+  return stepLimitOverCells(
+      "lagremap::geometry::cells", mesh, KOKKOS_LAMBDA(const Index c, StepLimit& best) {
+        cellGeometryAndThermo(cell_nodes, x_n, s, controls, c, best);
+      });
 }
 
 // The same on a mesh whose geometry is known (fixedMeshGeometry of the mesh
@@ -374,10 +374,11 @@ inline StepLimit computeGeometry(const Mesh& mesh, const State& state,
                                  const TimeStepControls& controls,
                                  const CellGeometryView& geometry) {
   const auto s = state;
-  return stepLimitOverCells("lagremap::geometry::cells_on_fixed_mesh", mesh,
-                            KOKKOS_LAMBDA(const Index c, StepLimit& best) {
-                              cellThermoOnGeometry(geometry(c), s, controls, c, best, false);
-                            });
+  return stepLimitOverCells(
+      "lagremap::geometry::cells_on_fixed_mesh", mesh,
+      KOKKOS_LAMBDA(const Index c, StepLimit& best) {
+        cellThermoOnGeometry(geometry(c), s, controls, c, best, false);
+      });
 }
 
 }  // namespace lagremap

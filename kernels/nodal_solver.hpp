@@ -601,12 +601,12 @@ inline StepLimit updateCellsAndGeometry(const Mesh& mesh, const State& state, do
   const auto cell_nodes = mesh.cell_nodes;
   const auto x_n = mesh.x_n;
   const auto s = state;
-  return stepLimitOverCells("lagremap::cell_update::update_and_geometry", mesh,
-                            KOKKOS_LAMBDA(const Index c, StepLimit& best) {
-                              updateCell(cell_nodes, x_n, s, dt_stage, c);
-                              cellGeometryAndThermo(cell_nodes, x_n, s, controls, c, best, true,
-                                                    corner_terms);
-                            });
+  return stepLimitOverCells(
+      "lagremap::cell_update::update_and_geometry", mesh,
+      KOKKOS_LAMBDA(const Index c, StepLimit& best) {
+        updateCell(cell_nodes, x_n, s, dt_stage, c);
+        cellGeometryAndThermo(cell_nodes, x_n, s, controls, c, best, true, corner_terms);
+      });
 }
 
 }  // namespace lagremap

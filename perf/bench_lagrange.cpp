@@ -421,8 +421,8 @@ int main(int argc, char* argv[]) {
   std::fprintf(stderr,
                "bench_lagrange: sedov %d^3 (%d cells, %d nodes), %s, warm-up %ld steps "
                "(t = %.3g, %.1f s), %ld shocked cells, bench dt = %.3g\n",
-               n, b.cells(), b.nodes(), executionSpaceText().c_str(),
-               warmup_steps, b.time(), b.warmupSeconds(), b.shockedCells(), b.dtBench());
+               n, b.cells(), b.nodes(), executionSpaceText().c_str(), warmup_steps, b.time(),
+               b.warmupSeconds(), b.shockedCells(), b.dtBench());
   benchmark::AddCustomContext("problem", "sedov");
   benchmark::AddCustomContext("n", std::to_string(n));
   benchmark::AddCustomContext("cells", std::to_string(b.cells()));

@@ -296,8 +296,7 @@ Subdomain decompose(const Mesh& global) {
     traction_offsets[std::size_t(n) + 1] = Index(traction_faces.size());
   }
   CellNodesView::HostMirror nodes_host("lagremap::mesh::cell_nodes", mesh.n_cells);
-  CellFacesView::HostMirror neighbors_host("lagremap::mesh::cell_neighbors",
-                                                     mesh.n_cells);
+  CellFacesView::HostMirror neighbors_host("lagremap::mesh::cell_neighbors", mesh.n_cells);
   CellFacesView::HostMirror side_host("lagremap::mesh::cell_face_side", mesh.n_cells);
   CellFacesView::HostMirror face_host("lagremap::mesh::cell_neighbor_face", mesh.n_cells);
   Kokkos::View<int*, HostSpace> cell_owned_host("lagremap::mesh::cell_owned", mesh.n_cells);

@@ -15,7 +15,9 @@ constexpr const char* kOtherThreadsFlag = "--kokkos-num-threads";
 #endif
 }  // namespace
 
-const char* kokkosThreadsFlag() { return kThreadsFlag; }
+const char* kokkosThreadsFlag() {
+  return kThreadsFlag;
+}
 
 std::string withKokkosThreadsSpelling(const std::string& argument) {
   const std::string other = std::string(kOtherThreadsFlag) + "=";
@@ -35,7 +37,9 @@ KokkosSession::KokkosSession(int& argc, char* argv[]) {
   Kokkos::initialize(argc, argv);
 }
 
-KokkosSession::~KokkosSession() { Kokkos::finalize(); }
+KokkosSession::~KokkosSession() {
+  Kokkos::finalize();
+}
 
 bool executionSpaceIsHost() {
   return Kokkos::SpaceAccessibility<Kokkos::HostSpace, ExecSpace::memory_space>::accessible;

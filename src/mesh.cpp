@@ -66,8 +66,7 @@ Mesh buildBlockMesh(const BlockSpec& spec, const SideBoundaries& boundaries) {
 
   // --- cell -> node (VTK hex), cell -> neighbour and boundary side per face.
   CellNodesView::HostMirror nodes_host("lagremap::mesh::cell_nodes", mesh.n_cells);
-  CellFacesView::HostMirror neighbors_host("lagremap::mesh::cell_neighbors",
-                                                     mesh.n_cells);
+  CellFacesView::HostMirror neighbors_host("lagremap::mesh::cell_neighbors", mesh.n_cells);
   CellFacesView::HostMirror side_host("lagremap::mesh::cell_face_side", mesh.n_cells);
   for (int k = 0; k < spec.nz; ++k)
     for (int j = 0; j < spec.ny; ++j)
@@ -96,8 +95,7 @@ Mesh buildBlockMesh(const BlockSpec& spec, const SideBoundaries& boundaries) {
 
   // --- the neighbour's face holding the same 4 nodes, found by search so it
   // holds for any cell orientation, not only the block's lo/hi pairing.
-  CellFacesView::HostMirror neighbor_face_host("lagremap::mesh::cell_neighbor_face",
-                                                         mesh.n_cells);
+  CellFacesView::HostMirror neighbor_face_host("lagremap::mesh::cell_neighbor_face", mesh.n_cells);
   for (Index c = 0; c < mesh.n_cells; ++c)
     for (int f = 0; f < 6; ++f) {
       const Index n = neighbors_host(c, f);

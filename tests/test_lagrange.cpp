@@ -253,8 +253,8 @@ TEST(Lagrange, CrsGatherIsBitIdenticalForOneAndTwoThreads) {
   for (int threads : {1, 2}) {
     const std::string flag = threads == 1 ? "--kokkos-threads=" : "--kokkos-num-threads=";
     const auto result = testing::runLagremap(
-        "--problem sedov --scale 0.4 --t-end 0.3 --set check.radius_tolerance=0.2 --quiet " +
-        flag + std::to_string(threads) + " --output " + dir + "/t" + std::to_string(threads));
+        "--problem sedov --scale 0.4 --t-end 0.3 --set check.radius_tolerance=0.2 --quiet " + flag +
+        std::to_string(threads) + " --output " + dir + "/t" + std::to_string(threads));
     ASSERT_EQ(result.exit_code, 0) << result.output;
   }
   for (const char* name :

@@ -192,7 +192,8 @@ TEST(Remap, KnownTargetGeometryGivesTheFullGeometryBitForBit) {
   const std::vector<double> expected = geometryFields(state);
   Kokkos::deep_copy(state.A_cp, 0.0);  // nothing left from the first pass
   Kokkos::deep_copy(state.vol_c, 0.0);
-  const StepLimit known = computeGeometry(setup.mesh, state, controls, fixedMeshGeometry(setup.mesh));
+  const StepLimit known =
+      computeGeometry(setup.mesh, state, controls, fixedMeshGeometry(setup.mesh));
   EXPECT_EQ(known.val, full.val);
   EXPECT_EQ(known.loc, full.loc);
   const std::vector<double> got = geometryFields(state);
