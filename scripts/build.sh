@@ -16,11 +16,18 @@ kokkos_root=${Kokkos_ROOT:-$(cat "$build/kokkos-root.txt" 2>/dev/null || true)}
   echo "build: run scripts/setup.sh${backend:+ --backend $backend} first (no Kokkos prefix known)" >&2
   exit 1
 }
-configure=(-DCMAKE_BUILD_TYPE=Release -DKokkos_ROOT="$kokkos_root")
+# -UKokkos_DIR: the Kokkos of this call, not one an earlier configure cached.
+configure=(-DCMAKE_BUILD_TYPE=Release -DKokkos_ROOT="$kokkos_root" -UKokkos_DIR)
 if [ "$backend" = cuda ]; then
   wrapper="$kokkos_root/bin/nvcc_wrapper"
   [ -x "$wrapper" ] || { echo "build: $kokkos_root has no bin/nvcc_wrapper (not a CUDA Kokkos?)" >&2; exit 1; }
   configure+=(-DCMAKE_CXX_COMPILER="$wrapper")
+  # Another compiler than the cached one (a new Kokkos prefix): CMake would
+  # drop the whole cache, and this call's -D options with it; start afresh.
+  if [ -f "$build/CMakeCache.txt" ] &&
+    ! grep -qx "CMAKE_CXX_COMPILER:[A-Z]*=$wrapper" "$build/CMakeCache.txt"; then
+    rm -rf "$build/CMakeCache.txt" "$build/CMakeFiles"
+  fi
 fi
 cmake -S "$here" -B "$build" "${configure[@]}" >/dev/null
 cmake --build "$build" -j "$(nproc)" "${backend_args[@]+"${backend_args[@]}"}"

@@ -28,8 +28,12 @@ while [ $# -gt 0 ]; do
   esac
 done
 cache=${LAGREMAP_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/lagremap}
+# The CUDA build's source and prefix carry the patch's checksum: a changed
+# patch gives a new patched copy and a new build, never a stale one.
+cuda_patch="$here/scripts/patches/kokkos-3.4.01-cuda.patch"
+cuda_patch_id=$(sha256sum "$cuda_patch" | cut -c1-8)
 if [ "$backend" = cuda ]; then
-  kokkos_prefix_default="$cache/kokkos-3.4.01-cuda-sm$cuda_arch"
+  kokkos_prefix_default="$cache/kokkos-3.4.01-cuda-sm$cuda_arch-$cuda_patch_id"
 else
   kokkos_prefix_default="$cache/kokkos-3.4.01-openmp"
 fi
@@ -92,8 +96,8 @@ kokkos_source() {
 # A copy of the Kokkos source for the CUDA build with the project's patch
 # applied (once: a copy already patched is kept); prints its path.
 patched_cuda_source() {
-  local shipped=$1 patched="$cache/kokkos-3.4.01-cuda-src"
-  local patch_file="$here/scripts/patches/kokkos-3.4.01-cuda.patch"
+  local shipped=$1 patched="$cache/kokkos-3.4.01-cuda-src-$cuda_patch_id"
+  local patch_file=$cuda_patch
   if [ ! -f "$patched/.lagremap-patched" ]; then
     rm -rf "$patched"
     cp -r "$shipped" "$patched"
