@@ -55,45 +55,26 @@ struct RemapLayout {
   KOKKOS_INLINE_FUNCTION int momentum(int d) const { return 3 * n_materials + d; }
   KOKKOS_INLINE_FUNCTION int kinetic() const { return 3 * n_materials + 3; }
   // Columns with a reconstructed gradient. The gradient is that of the
-  // primitive variable of the column (primitiveValue): alpha^k, rho^k, e^k,
+  // primitive variable of the column (remapDensities): alpha^k, rho^k, e^k,
   // the velocity and the tensors S^k or B^k; the kinetic energy is not
   // reconstructed (it rides on the momentum's parcels).
   KOKKOS_INLINE_FUNCTION bool reconstructed(int v) const { return v != kinetic(); }
-  // Material of tensor column v (v > kinetic()).
-  KOKKOS_INLINE_FUNCTION int tensorMaterial(int v) const {
-    int owner = 0;
-    for (int k = 0; k < n_materials; ++k)
-      if (tensor_column[k] >= 0 && tensor_column[k] <= v) owner = k;
-    return owner;
+
+  // Material of column v: k for the columns of material k but its volume
+  // fraction (rho^k, e^k and its tensor), -1 for the volume fractions and the
+  // velocity, which every cell has (makeRemapLayout fills it).
+  Kokkos::Array<int, kMaxRemapVariables> column_material;
+
+  // Whether a cell of densities q has the primitive variable of column v (a
+  // material absent from it has no density, energy or tensor).
+  template <class Table>
+  KOKKOS_INLINE_FUNCTION bool hasPrimitive(const Table& q, Index c, int v) const {
+    const int k = column_material[v];
+    if (k < 0) return true;
+    const bool has_volume = q(c, alpha(k)) > 0.0;
+    return v > kinetic() ? has_volume : has_volume && q(c, mass(k)) > 0.0;
   }
 
-  // Primitive variable of column v in a cell from its densities q; false if
-  // the cell has none (a material absent from it).
-  template <class Table>
-  KOKKOS_INLINE_FUNCTION bool primitiveValue(const Table& q, Index c, int v, double& value) const {
-    if (v < n_materials) {
-      value = q(c, v);
-      return true;
-    }
-    if (v < 3 * n_materials) {
-      const int k = v < 2 * n_materials ? v - n_materials : v - 2 * n_materials;
-      const double alpha = q(c, alpha_column(k)), mass = q(c, n_materials + k);
-      if (!(alpha > 0.0 && mass > 0.0)) return false;
-      value = v < 2 * n_materials ? mass / alpha : q(c, v) / mass;
-      return true;
-    }
-    if (v > kinetic()) {  // alpha^k T^k -> T^k
-      const double alpha = q(c, alpha_column(tensorMaterial(v)));
-      if (!(alpha > 0.0)) return false;
-      value = q(c, v) / alpha;
-      return true;
-    }
-    double rho = 0.0;  // bulk density
-    for (int k = 0; k < n_materials; ++k) rho += q(c, n_materials + k);
-    value = q(c, v) / rho;
-    return true;
-  }
-  KOKKOS_INLINE_FUNCTION int alpha_column(int k) const { return k; }
 };
 
 struct RemapControls {
@@ -105,37 +86,77 @@ struct RemapControls {
   bool kinetic_energy_fix = true;  // false: kinetic energy from the remapped momentum (tests)
 };
 
+// Per-cell work arrays of the remap, written by remapDensities and
+// remapGradients and read by remapUpdate.
+struct RemapFields {
+  MatRealView density;               // (cell, column) per unit volume on the Lagrangian cell
+  MatRealView primitive;             // (cell, column) primitive variable, where the cell has it
+  DeviceView<Real** [3]> gradient;   // (cell, column, xyz) of the primitive, limited
+  RealView reach;                    // largest centroid-vertex distance of each Lagrangian cell
+};
+
+inline RemapFields allocateRemapFields(Index n_cells, const RemapLayout& layout) {
+  return {MatRealView("lagremap::remap::density", n_cells, layout.n_variables),
+          MatRealView("lagremap::remap::primitive", n_cells, layout.n_variables),
+          DeviceView<Real** [3]>("lagremap::remap::gradient", n_cells, layout.n_variables),
+          RealView("lagremap::remap::reach", n_cells)};
+}
+
 // Quantities the outer boundary exchanged in the sweep (mass, momentum xyz,
 // total energy): zero for walls, which sweep no volume; a moving traction
 // face books here what crossed it (PROBLEMS.md, pile).
 using RemapBoundaryFlux = SumArray<5>;
 
-inline void remapDensities(const State& state, const RemapLayout& layout, const MatRealView& q) {
+// Also the primitive variable of each column, which the gradients and the
+// fluxes read (computed once per cell, not once per neighbour and per swept
+// triangle): alpha^k, rho^k = (alpha rho)^k / alpha^k, e^k = (alpha rho e)^k /
+// (alpha rho)^k, V = rho V / rho and T^k = (alpha T)^k / alpha^k; zero where
+// the cell does not have it (RemapLayout::hasPrimitive).
+inline void remapDensities(const State& state, const RemapLayout& layout,
+                           const RemapFields& fields) {
   const auto s = state;
+  const auto q = fields.density;
+  const auto w = fields.primitive;
   Kokkos::parallel_for(
       "lagremap::remap::densities", Kokkos::RangePolicy<ExecSpace>(0, Index(s.m_c.extent(0))),
       KOKKOS_LAMBDA(const Index c) {
         const double inv_volume = 1.0 / s.vol_c(c);
+        double rho = 0.0;  // bulk density, summed as the momentum's primitive needs it
         for (int k = 0; k < layout.n_materials; ++k) {
           const double alpha = s.alpha_ck(c, k);
           const double mass = s.m_ck(c, k);
+          const double mass_density = mass * inv_volume;
+          const double energy_density = alpha > 0.0 ? mass * s.e_ck(c, k) * inv_volume : 0.0;
+          const bool has_mass = alpha > 0.0 && mass_density > 0.0;
           q(c, layout.alpha(k)) = alpha;
-          q(c, layout.mass(k)) = mass * inv_volume;
-          q(c, layout.energy(k)) = alpha > 0.0 ? mass * s.e_ck(c, k) * inv_volume : 0.0;
+          q(c, layout.mass(k)) = mass_density;
+          q(c, layout.energy(k)) = energy_density;
+          w(c, layout.alpha(k)) = alpha;
+          w(c, layout.mass(k)) = has_mass ? mass_density / alpha : 0.0;
+          w(c, layout.energy(k)) = has_mass ? energy_density / mass_density : 0.0;
+          rho += mass_density;
           const int column = layout.tensor_column[k];
           if (column < 0) continue;
           const SymMat3 tensor = s.materials(k).strength == StrengthKind::NeoHookean
                                      ? loadSym(s.B_ck, c, k)
                                      : loadSym(s.S_ck, c, k);
           const double t[6] = {tensor.xx, tensor.yy, tensor.zz, tensor.xy, tensor.yz, tensor.xz};
-          for (int i = 0; i < 6; ++i) q(c, column + i) = alpha * t[i];
+          for (int i = 0; i < 6; ++i) {
+            q(c, column + i) = alpha * t[i];
+            // (alpha T) / alpha: the primitive the tensor integral was always divided back to
+            w(c, column + i) = alpha > 0.0 ? (alpha * t[i]) / alpha : 0.0;
+          }
         }
         const double mass = s.m_c(c);
         const Vec3 v = loadVec3(s.v_c, c);
-        q(c, layout.momentum(0)) = mass * v.x * inv_volume;
-        q(c, layout.momentum(1)) = mass * v.y * inv_volume;
-        q(c, layout.momentum(2)) = mass * v.z * inv_volume;
+        const double momentum[3] = {mass * v.x * inv_volume, mass * v.y * inv_volume,
+                                    mass * v.z * inv_volume};
+        for (int d = 0; d < 3; ++d) {
+          q(c, layout.momentum(d)) = momentum[d];
+          w(c, layout.momentum(d)) = momentum[d] / rho;
+        }
         q(c, layout.kinetic()) = 0.5 * mass * dot(v, v) * inv_volume;
+        w(c, layout.kinetic()) = 0.0;  // not reconstructed
       });
 }
 
@@ -146,8 +167,11 @@ inline void remapDensities(const State& state, const RemapLayout& layout, const 
 // and each material's interface normal -grad alpha^k / |grad alpha^k|
 // (State::n_ck, for the stress relaxation of mixed cells, geometry.hpp).
 inline void remapGradients(const Mesh& mesh, const State& state, const RemapLayout& layout,
-                           const RemapControls& controls, const MatRealView& q,
-                           const DeviceView<Real** [3]>& gradient, const RealView& reach) {
+                           const RemapControls& controls, const RemapFields& fields) {
+  const auto q = fields.density;
+  const auto w = fields.primitive;
+  const auto gradient = fields.gradient;
+  const auto reach = fields.reach;
   const auto cell_nodes = mesh.cell_nodes;
   const auto neighbors = mesh.cell_neighbors;
   const auto x_n = mesh.x_n;
@@ -179,17 +203,17 @@ inline void remapGradients(const Mesh& mesh, const State& state, const RemapLayo
         reach(c) = math::sqrt(reach2);
         for (int v = 0; v < layout.n_variables; ++v) {
           if (!layout.reconstructed(v)) continue;
-          double center = 0.0;
-          if (!layout.primitiveValue(q, c, v, center)) {
+          if (!layout.hasPrimitive(q, c, v)) {
             for (int d = 0; d < 3; ++d) gradient(c, v, d) = 0.0;
             continue;
           }
+          const double center = w(c, v);
           Bounds bounds(center);
           Vec3 rhs{0.0, 0.0, 0.0};
           for (int f = 0; f < 6; ++f) {
-            double value = 0.0;
             // a neighbour without the material counts as "no change"
-            if (nb[f] < 0 || !layout.primitiveValue(q, nb[f], v, value)) continue;
+            if (nb[f] < 0 || !layout.hasPrimitive(q, nb[f], v)) continue;
+            const double value = w(nb[f], v);
             rhs += (value - center) * offset[f];
             bounds.include(value);
           }
@@ -250,8 +274,11 @@ inline void remapGradients(const Mesh& mesh, const State& state, const RemapLayo
 // crossed the outer boundary.
 inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state,
                                      const RemapLayout& layout, const RemapControls& controls,
-                                     const MatRealView& q, const DeviceView<Real** [3]>& gradient,
-                                     const RealView& reach, const SweptFaces& swept) {
+                                     const RemapFields& fields, const SweptFaces& swept) {
+  const auto q = fields.density;
+  const auto w = fields.primitive;
+  const auto gradient = fields.gradient;
+  const auto reach = fields.reach;
   const auto neighbors = mesh.cell_neighbors;
   const auto owned = mesh.cell_owned;
   const auto s = state;
@@ -278,11 +305,9 @@ inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state,
           rho_hi[m] = e_hi[m] = -1e300;
         }
         auto includeSource = [&](Index cell, int m) {
-          const double alpha_source = q(cell, layout.alpha(m));
-          const double mass_source = q(cell, layout.mass(m));
-          if (!(alpha_source > 0.0 && mass_source > 0.0)) return;
-          const double rho = mass_source / alpha_source;
-          const double e = q(cell, layout.energy(m)) / mass_source;
+          if (!layout.hasPrimitive(q, cell, layout.mass(m))) return;
+          const double rho = w(cell, layout.mass(m));
+          const double e = w(cell, layout.energy(m));
           rho_lo[m] = rho < rho_lo[m] ? rho : rho_lo[m];
           rho_hi[m] = rho > rho_hi[m] ? rho : rho_hi[m];
           e_lo[m] = e < e_lo[m] ? e : e_lo[m];
@@ -340,12 +365,8 @@ inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state,
             // the swept region may hold a sliver of the material only (a
             // solid's energy slope added to a gas-side region that holds 1e-5
             // of it gives that trace any energy at all).
-            double rho_up = 0.0;
             int materials_up = 0;
-            for (int m = 0; m < n_materials; ++m) {
-              rho_up += q(up, layout.mass(m));
-              materials_up += q(up, layout.alpha(m)) > 0.0;
-            }
+            for (int m = 0; m < n_materials; ++m) materials_up += q(up, layout.alpha(m)) > 0.0;
             const bool pure_up = materials_up == 1;
             // Materials: volume second order; mass and energy by the product
             // rule on the upwind reconstructions alpha, rho^k, e^k.
@@ -358,8 +379,8 @@ inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state,
               const double mass_up = q(up, layout.mass(m));
               if (!(alpha_up > 0.0 && mass_up > 0.0)) continue;  // nothing of m to carry
               if (up != c) includeSource(up, m);
-              const double rho_up_m = mass_up / alpha_up;
-              const double e_up = q(up, layout.energy(m)) / mass_up;
+              const double rho_up_m = w(up, layout.mass(m));
+              const double e_up = w(up, layout.energy(m));
               const double mass_flux =
                   alpha_flux * rho_up_m + (pure_up ? alpha_up * slope(layout.mass(m)) : 0.0);
               integral[layout.mass(m)] += mass_flux;
@@ -376,7 +397,7 @@ inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state,
                 const Index other = up == c ? nb : c;
                 const double mass_other = q(other, layout.mass(m));
                 if (q(other, a) > 0.0 && mass_other > 0.0) {
-                  const double e_other = q(other, layout.energy(m)) / mass_other;
+                  const double e_other = w(other, layout.energy(m));
                   e_lo_face = e_other < e_lo_face ? e_other : e_lo_face;
                   e_hi_face = e_other > e_hi_face ? e_other : e_hi_face;
                 }
@@ -393,7 +414,7 @@ inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state,
               // alpha^k T^k: the volume's flux times T^k, second order in a
               // pure upwind cell (as rho^k and e^k above).
               for (int i = 0; i < 6; ++i) {
-                integral[column + i] += alpha_flux * (q(up, column + i) / alpha_up) +
+                integral[column + i] += alpha_flux * w(up, column + i) +
                                         (pure_up ? alpha_up * slope(column + i) : 0.0);
               }
             }
@@ -414,7 +435,7 @@ inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state,
             for (int d = 0; d < 3; ++d) {
               const int column = layout.momentum(d);
               const double v_region =
-                  q(up, column) / rho_up + (pure_up ? slope(column) * inv_dvol : 0.0);
+                  w(up, column) + (pure_up ? slope(column) * inv_dvol : 0.0);
               integral[column] += mass_flux_total * v_region;
               kinetic_flux += mass_flux_total * 0.5 * v_region * v_region;
             }

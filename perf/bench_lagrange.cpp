@@ -145,9 +145,7 @@ struct RemapInputs {
   explicit RemapInputs(Bench& b)
       : layout(makeRemapLayout(b.state())),
         x_target("bench::remap::x_target", b.nodes()),
-        density("bench::remap::density", b.cells(), layout.n_variables),
-        gradient("bench::remap::gradient", b.cells(), layout.n_variables),
-        reach("bench::remap::reach", b.cells()),
+        fields(allocateRemapFields(b.cells(), layout)),
         swept(allocateSweptFaces(b.mesh())) {}
 
   // Untimed: the warm state, whose positions become the remap target (as
@@ -161,8 +159,8 @@ struct RemapInputs {
     Kokkos::deep_copy(x_target, b.mesh().x_n);
     LagrangeStep lagrange(b.mesh(), b.state(), b.numerics(), b.timers());
     lagrange.advance(b.dtBench(), 1);
-    remapDensities(b.state(), layout, density);
-    remapGradients(b.mesh(), b.state(), layout, controls, density, gradient, reach);
+    remapDensities(b.state(), layout, fields);
+    remapGradients(b.mesh(), b.state(), layout, controls, fields);
     computeSweptFaces(b.mesh(), b.mesh().x_n, x_target, swept);
     Kokkos::fence();
   }
@@ -170,9 +168,7 @@ struct RemapInputs {
   RemapControls controls;  // BM_Remap's: the defaults
   RemapLayout layout;
   Vec3View x_target;
-  MatRealView density;
-  DeviceView<Real** [3]> gradient;
-  RealView reach;
+  RemapFields fields;
   SweptFaces swept;
 };
 
@@ -301,7 +297,7 @@ void BM_RemapDensities(benchmark::State& state) {
   Bench& b = *g_bench;
   RemapInputs& r = *g_remap;
   r.prepare(b);
-  timedLoop(state, [&] { remapDensities(b.state(), r.layout, r.density); });
+  timedLoop(state, [&] { remapDensities(b.state(), r.layout, r.fields); });
   setCellRate(state, "cells_per_second");
 }
 
@@ -310,7 +306,7 @@ void BM_RemapGradients(benchmark::State& state) {
   RemapInputs& r = *g_remap;
   r.prepare(b);
   timedLoop(state, [&] {
-    remapGradients(b.mesh(), b.state(), r.layout, r.controls, r.density, r.gradient, r.reach);
+    remapGradients(b.mesh(), b.state(), r.layout, r.controls, r.fields);
   });
   setCellRate(state, "cells_per_second");
 }
@@ -335,7 +331,7 @@ void BM_RemapFluxes(benchmark::State& state) {
     Kokkos::fence();
     Kokkos::Timer timer;
     const RemapBoundaryFlux crossed = remapUpdate(b.mesh(), b.state(), r.layout, r.controls,
-                                                  r.density, r.gradient, r.reach, r.swept);
+                                                  r.fields, r.swept);
     Kokkos::fence();
     state.SetIterationTime(timer.seconds());
     benchmark::DoNotOptimize(crossed.v[0]);

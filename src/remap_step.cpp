@@ -15,9 +15,13 @@ RemapLayout makeRemapLayout(const State& state) {
   layout.n_materials = state.n_materials;
   int column = 3 * state.n_materials + 4;
   for (int k = 0; k < kMaxMaterials; ++k) layout.tensor_column[k] = -1;
+  for (int v = 0; v < kMaxRemapVariables; ++v) layout.column_material[v] = -1;
   for (int k = 0; k < state.n_materials; ++k) {
+    layout.column_material[layout.mass(k)] = k;
+    layout.column_material[layout.energy(k)] = k;
     if (materials(k).strength == StrengthKind::None) continue;
     layout.tensor_column[k] = column;
+    for (int i = 0; i < 6; ++i) layout.column_material[column + i] = k;
     column += 6;
   }
   layout.n_variables = column;
@@ -36,9 +40,7 @@ RemapStep::RemapStep(Mesh& mesh, State& state, const RemapControls& controls, Ph
   x_target_ = Vec3View("lagremap::remap::x_target", mesh.n_nodes);
   Kokkos::deep_copy(x_target_, mesh.x_n);
   target_geometry_ = fixedMeshGeometry(mesh);
-  density_ = MatRealView("lagremap::remap::density", n_cells, layout_.n_variables);
-  gradient_ = DeviceView<Real** [3]>("lagremap::remap::gradient", n_cells, layout_.n_variables);
-  reach_ = RealView("lagremap::remap::reach", n_cells);
+  fields_ = allocateRemapFields(n_cells, layout_);
   swept_ = allocateSweptFaces(mesh);
   m_c_saved_ = RealView("lagremap::remap::m_c_saved", n_cells);
   alpha_ck_saved_ = MatRealView("lagremap::remap::alpha_ck_saved", n_cells, state.n_materials);
@@ -52,10 +54,10 @@ RemapBoundaryFlux RemapStep::apply() {
     Kokkos::deep_copy(m_c_saved_, state_.m_c);
     Kokkos::deep_copy(alpha_ck_saved_, state_.alpha_ck);
     Kokkos::deep_copy(m_ck_saved_, state_.m_ck);
-    remapDensities(state_, layout_, density_);
-    remapGradients(mesh_, state_, layout_, controls_, density_, gradient_, reach_);
+    remapDensities(state_, layout_, fields_);
+    remapGradients(mesh_, state_, layout_, controls_, fields_);
     computeSweptFaces(mesh_, mesh_.x_n, x_target_, swept_);
-    crossed = remapUpdate(mesh_, state_, layout_, controls_, density_, gradient_, reach_, swept_);
+    crossed = remapUpdate(mesh_, state_, layout_, controls_, fields_, swept_);
     Kokkos::deep_copy(mesh_.x_n, x_target_);
   }
   if (halo_) {  // ghost cells: their owners' remapped state (DESIGN §6)

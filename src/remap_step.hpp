@@ -47,9 +47,7 @@ class RemapStep {
   RemapLayout layout_;
   Vec3View x_target_;
   CellGeometryView target_geometry_;
-  MatRealView density_;              // (cell, variable) per unit volume
-  DeviceView<Real** [3]> gradient_;  // (cell, variable, xyz), limited
-  RealView reach_;                   // largest centroid-vertex distance of each Lagrangian cell
+  RemapFields fields_;
   SweptFaces swept_;
   RealView m_c_saved_;
   MatRealView alpha_ck_saved_, m_ck_saved_;
