@@ -251,16 +251,29 @@ KOKKOS_INLINE_FUNCTION CellThermo cellThermo(const State& s, Index c, double vol
   return mix;
 }
 
+// What the geometry at the end of a Lagrangian stage computes.
+enum class StageEnd {
+  // Everything the next stage reads: shape, thermodynamics, corner vectors
+  // and impedances, time-step candidates.
+  Full,
+  // The last stage of a step the remap follows (LagrangeStep::
+  // remapFollowsEveryStep): what the remap reads (volume, centroid, the
+  // materials' volume shares) and the checks of the Lagrangian state. The
+  // thermodynamics, corner terms and time step are those of the remapped
+  // state (computeGeometry on the target mesh): nothing reads the Lagrangian
+  // ones, so they are not computed (the 24 corner-face normals, one EOS
+  // evaluation per material). Same bits as Full for everything that is read.
+  ForRemap,
+};
+
 // Thermodynamic closure and corner impedance of one cell of known geometry
 // (volume, centroid, corner vectors and corner-face sums), and its time-step
 // candidates folded into `best` (DESIGN §2-3).
 // `end_of_stage`: the nodes have just moved in a Lagrangian stage, so a mixed
 // cell's volume change is shared among its materials first.
-// `corner_terms` false: no corner vectors and impedances (geo has none).
 KOKKOS_INLINE_FUNCTION void cellThermoOnGeometry(const hex::CellGeometry& geo, const State& s,
                                                  const TimeStepControls& controls, Index c,
-                                                 StepLimit& best, bool end_of_stage,
-                                                 bool corner_terms = true) {
+                                                 StepLimit& best, bool end_of_stage) {
   const double volume = geo.shape.volume;
   s.vol_c(c) = volume;
   storeVec3(s.x_c, c, geo.shape.centroid);
@@ -282,7 +295,7 @@ KOKKOS_INLINE_FUNCTION void cellThermoOnGeometry(const hex::CellGeometry& geo, c
 
   // Corner impedance (DESIGN §3, nodal solver) from the corner-face sums.
   const double rho_aL = rho * aL, rho_aT = rho * aT;
-  for (int p = 0; p < (corner_terms ? 8 : 0); ++p) {
+  for (int p = 0; p < 8; ++p) {
     SymMat3 impedance = (rho_aL - rho_aT) * geo.normal_moment[p];
     impedance += identitySym(rho_aT * geo.corner_face_area[p]);
     storeVec3(s.A_cp, 8 * c + p, geo.corner[p]);
@@ -296,24 +309,38 @@ KOKKOS_INLINE_FUNCTION void cellThermoOnGeometry(const hex::CellGeometry& geo, c
                 finite_state, thermo.valid);
 }
 
-// The same, the geometry computed from the cell's nodes. `corner_terms` false
-// where nothing reads the corner vectors and impedances before the geometry is
-// computed again (the end of a step the remap follows): volume, centroid and
-// thermodynamics only, without the 24 corner-face normals.
+// StageEnd::ForRemap's part of the above at the end of a stage: volume,
+// centroid and volume shares, and the checks that need no equation of state
+// (a tangled cell, a non-finite energy or density). Proposes no time step.
+KOKKOS_INLINE_FUNCTION void cellShapeForRemap(const hex::CellShape& shape, const State& s,
+                                              Index c, StepLimit& best) {
+  const double volume = shape.volume;
+  s.vol_c(c) = volume;
+  storeVec3(s.x_c, c, shape.centroid);
+  if (s.n_materials > 1) shareVolumeChange(s, c, volume);
+  if (!(volume > 0.0)) return proposeStepLimit(best, -1.0, c, kBadVolume);
+  const Vec3 v = loadVec3(s.v_c, c);
+  const double e = s.E_c(c) - 0.5 * dot(v, v);
+  const bool finite_state = math::isfinite(e) && math::isfinite(s.m_c(c) / volume);
+  if (!finite_state) proposeStepLimit(best, -1.0, c, kBadState);
+}
+
+// The same, the geometry computed from the cell's nodes.
 KOKKOS_INLINE_FUNCTION void cellGeometryAndThermo(const CellNodesView& cell_nodes,
                                                   const Vec3View& x_n, const State& s,
                                                   const TimeStepControls& controls, Index c,
                                                   StepLimit& best, bool end_of_stage = false,
-                                                  bool corner_terms = true) {
+                                                  StageEnd what = StageEnd::Full) {
   Vec3 x[8];
   gatherCellNodes(cell_nodes, x_n, c, x);
   hex::CellGeometry geo;
-  if (corner_terms) {
+  if (what == StageEnd::Full) {
     hex::cellGeometry<true>(x, geo);
+    cellThermoOnGeometry(geo, s, controls, c, best, end_of_stage);
   } else {
     hex::cellGeometry<false>(x, geo);
+    cellShapeForRemap(geo.shape, s, c, best);
   }
-  cellThermoOnGeometry(geo, s, controls, c, best, end_of_stage, corner_terms);
 }
 
 // The geometry of every cell of a mesh that does not move: the remap's target,

@@ -594,10 +594,10 @@ inline void updateCells(const Mesh& mesh, const State& state, double dt_stage) {
 // closure at the new node positions (both cell-local, so one kernel does them
 // while the cell's corner records are in cache); returns the time-step
 // candidates of the new state. Same results as updateCells + computeGeometry.
-// `corner_terms`: see cellGeometryAndThermo.
+// `what`: see StageEnd.
 inline StepLimit updateCellsAndGeometry(const Mesh& mesh, const State& state, double dt_stage,
                                         const TimeStepControls& controls,
-                                        bool corner_terms = true) {
+                                        StageEnd what = StageEnd::Full) {
   const auto cell_nodes = mesh.cell_nodes;
   const auto x_n = mesh.x_n;
   const auto s = state;
@@ -605,7 +605,7 @@ inline StepLimit updateCellsAndGeometry(const Mesh& mesh, const State& state, do
       "lagremap::cell_update::update_and_geometry", mesh,
       KOKKOS_LAMBDA(const Index c, StepLimit& best) {
         updateCell(cell_nodes, x_n, s, dt_stage, c);
-        cellGeometryAndThermo(cell_nodes, x_n, s, controls, c, best, true, corner_terms);
+        cellGeometryAndThermo(cell_nodes, x_n, s, controls, c, best, true, what);
       });
 }
 

@@ -79,8 +79,8 @@ StepLimit LagrangeStep::stage(double dt_stage, bool last_stage) {
   StepLimit limit;
   {
     auto scope = timers_.scope(Phase::CellUpdate);
-    limit = updateCellsAndGeometry(mesh_, state_, dt_stage, numerics_.step,
-                                   !last_stage || corner_terms_after_step_);
+    const StageEnd what = last_stage && remap_follows_ ? StageEnd::ForRemap : StageEnd::Full;
+    limit = updateCellsAndGeometry(mesh_, state_, dt_stage, numerics_.step, what);
   }
   if (halo_) {
     auto scope = timers_.scope(Phase::Halo);

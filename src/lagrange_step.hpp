@@ -56,15 +56,16 @@ class LagrangeStep {
   void restoreStartOfStep();
   // Copies the current state as the start of a step.
   void saveStartOfStep();
-  // The remap follows every step and computes the geometry again on its
-  // target mesh: the last stage of a step then leaves the corner vectors and
-  // impedances uncomputed (nothing reads them before that).
-  void remapFollowsEveryStep() { corner_terms_after_step_ = false; }
+  // The remap follows every step and computes the geometry and closure again
+  // on its target mesh: the last stage of a step then computes only what the
+  // remap reads (StageEnd::ForRemap), and advance() returns no time-step
+  // candidate, only a failure (a negative value) where the state is invalid.
+  void remapFollowsEveryStep() { remap_follows_ = true; }
 
  private:
   // Corner terms, nodal solve, then cell update and geometry at the new
-  // positions (without its corner terms for the last stage of a step that the
-  // remap follows).
+  // positions (StageEnd::ForRemap for the last stage of a step that the remap
+  // follows).
   StepLimit stage(double dt_stage, bool last_stage);
   // The smallest candidate over every rank's owned cells, located by global cell id.
   StepLimit overAllRanks(StepLimit limit) const;
@@ -74,7 +75,7 @@ class LagrangeStep {
   Numerics numerics_;
   PhaseTimers& timers_;
   const Halo* halo_;
-  bool corner_terms_after_step_ = true;
+  bool remap_follows_ = false;
 };
 
 }  // namespace lagremap
