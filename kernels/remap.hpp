@@ -7,9 +7,10 @@
 //                    (Barth-Jespersen, beta = 1; volume fractions compressive,
 //                    beta = 2 by default);
 //   computeSweptFaces (swept_face.hpp): volume and first moment swept by
-//                    every face triangle between the two meshes;
-//   remapUpdate:     per cell, the upwind flux through each of its 24
-//                    triangles, the new integrals, the clean-up of volume
+//                    every face triangle between the two meshes, summed by
+//                    face side (the region a face gains, the one it gives);
+//   remapUpdate:     per cell, the upwind flux of each of its 12 face-side
+//                    regions, the new integrals, the clean-up of volume
 //                    fractions, the recovered state and the kinetic-energy fix.
 // Fluxes are second order in the primitive variables, each reconstructed
 // (limited) in the upwind cell: alpha^k (compressive limiter), the material
@@ -24,7 +25,7 @@
 // limited values: a trace of a material swept into a cell (alpha ~ 1e-6)
 // keeps a physical density instead of the ratio of two independently limited
 // reconstructions, and velocity gets no new extrema at a density jump.
-// Every cell computes the fluxes of its own 24 triangles. The swept regions of a
+// Every cell computes the fluxes of its own 12 regions. The swept regions of a
 // face are stored with exactly opposite signs on its two sides and the upwind
 // cell is chosen identically from both (ties at dV = 0 go to the lower cell
 // id), so the neighbour's flux is the exact negative of ours: every remapped
@@ -269,7 +270,7 @@ inline void remapGradients(const Mesh& mesh, const State& state, const RemapLayo
       });
 }
 
-// Sum of the upwind fluxes through the cell's 24 triangles, the new state on
+// Sum of the upwind fluxes of the cell's 12 face-side regions, the new state on
 // the initial mesh, clean-up and kinetic-energy fix (DESIGN §5). Returns what
 // crossed the outer boundary.
 inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state,
@@ -317,9 +318,9 @@ inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state,
         double volume = volume_lag;
         for (int f = 0; f < 6; ++f) {
           const Index nb = neighbors(c, f);
-          for (int k = 0; k < 4; ++k) {
-            const Index t = sweptTriangleId(c, f, k);
-            const double dvol = swept.dvol_t(t);
+          for (int side = 0; side < 2; ++side) {
+            const Index r = sweptRegionId(c, f, side);
+            const double dvol = swept.dvol_r(r);
             volume += dvol;
             if (nb < 0) {
               // Outer boundary: the swept region takes the cell's own state
@@ -338,15 +339,21 @@ inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state,
               }
               continue;
             }
-            // Upwind cell: the one the region is taken from (c gains from nb
-            // when dV > 0); both sides make the same choice, ties included.
-            const Index up = dvol > 0.0 ? nb : (dvol < 0.0 ? c : (nb < c ? nb : c));
-            Vec3 lever = loadVec3(swept.moment_t, t) - dvol * loadVec3(s.x_c, up);
+            // A region of no volume carries nothing once its lever is limited
+            // (below): no flux, and it is no source of the clean-up bounds.
+            // (Unlimited, its first moment still carries the linear part.)
+            if (dvol == 0.0 && limit) continue;
+            // Upwind cell: the one the region is taken from, the neighbour for
+            // the gained side; both sides of the face make the same choice
+            // (computeSweptFaces).
+            const Index up = side == kGainedSide ? nb : c;
+            Vec3 lever = loadVec3(swept.moment_r, r) - dvol * loadVec3(s.x_c, up);
             // Lever limit: the slopes are evaluated at the region's centroid
             // x_up + lever / dV, inside the upwind cell for a region the face
             // sweeps through it. A region that sweeps almost no volume but
-            // has a first moment (a triangle that twists: inflow on one side,
-            // outflow on the other) puts that point arbitrarily far away,
+            // has a first moment (a face that twists: inflow on one side,
+            // outflow on the other, one of them nearly empty) puts that point
+            // arbitrarily far away,
             // where the reconstruction extrapolates without bound (next to
             // gas at 1e6 J/kg: 1e6 J/kg with no mass into a cell at 1 J/kg,
             // in the `ball`). The point is kept within the upwind cell's

@@ -119,31 +119,41 @@ KOKKOS_INLINE_FUNCTION bool staysInOneAxisPlane(const Vec3 q_lag[4], const Vec3 
 
 }  // namespace swept
 
-// Storage of the swept regions: one slot per (cell, face, triangle),
-//   t = 24 c + 4 f + k  (f: hex face, k: triangle (q_k, q_k+1, face point) of hex::faceNode),
-// both oriented out of cell c. Every interior face is computed once, by its
-// owner (the cell with the lower id), which writes its own 4 slots and the
-// exact negatives into the 4 matching slots of the neighbour, so both sides hold
-// the same bits up to sign; boundary faces are computed by their only cell. A
-// cell then finds all its regions in its own 24 contiguous slots.
-constexpr int kSweptTrianglesPerCell = kFacesPerCell * 4;
+// Storage of the swept regions, by face side: the 4 triangles of a face are
+// summed, by the side they take their region from, into two regions,
+//   gained (side 0): the triangles with dV_t > 0, which cell c takes from its
+//                    neighbour (upwind: the neighbour);
+//   given  (side 1): those with dV_t < 0 (upwind: c itself),
+// and a triangle with dV_t = 0 joins the side of the lower cell id, the
+// upwind choice of DESIGN §5 for a tie. A region's flux is linear in its
+// volume and first moment (F = dV q_up + grad(q)_up . (M - x_up dV)), so the
+// sum of the triangles' fluxes is the flux of the sum: the remap evaluates
+// one or two fluxes a face instead of four (README, Numerical method, on the
+// guards that are not linear). Slot r = 12 c + 2 f + side, oriented out of
+// cell c. Every interior face is computed once, by its owner (the cell with
+// the lower id), which writes its own 2 slots and the exact negatives into
+// the neighbour's 2 slots of the same face, sides exchanged, so both sides
+// hold the same bits up to sign; boundary faces are computed by their only
+// cell. A cell then finds all its regions in its own 12 contiguous slots.
+constexpr int kSweptRegionsPerCell = kFacesPerCell * 2;
+constexpr int kGainedSide = 0, kGivenSide = 1;
 
-KOKKOS_INLINE_FUNCTION Index sweptTriangleId(Index c, int f, int k) {
-  return kSweptTrianglesPerCell * c + 4 * f + k;
+KOKKOS_INLINE_FUNCTION Index sweptRegionId(Index c, int f, int side) {
+  return kSweptRegionsPerCell * c + 2 * f + side;
 }
 
 struct SweptFaces {
-  RealView dvol_t;    // signed swept volume dV_t (> 0: the cell gains from its neighbour)
-  Vec3View moment_t;  // first moment M_t, absolute coordinates
+  RealView dvol_r;    // signed swept volume dV (>= 0 gained, <= 0 given)
+  Vec3View moment_r;  // first moment M, absolute coordinates
 };
 
 inline SweptFaces allocateSweptFaces(const Mesh& mesh) {
-  const Index n_triangles = kSweptTrianglesPerCell * mesh.n_cells;
-  return {RealView("lagremap::remap::dvol_t", n_triangles),
-          Vec3View("lagremap::remap::moment_t", n_triangles)};
+  const Index n_regions = kSweptRegionsPerCell * mesh.n_cells;
+  return {RealView("lagremap::remap::dvol_r", n_regions),
+          Vec3View("lagremap::remap::moment_r", n_regions)};
 }
 
-// Swept volumes and first moments of every face triangle, moving from the
+// Swept volumes and first moments of every face, by side, moving from the
 // Lagrangian node positions x_lag to the remap target x_target (the initial
 // mesh), DESIGN §5.
 inline void computeSweptFaces(const Mesh& mesh, const Vec3View& x_lag, const Vec3View& x_target,
@@ -151,17 +161,16 @@ inline void computeSweptFaces(const Mesh& mesh, const Vec3View& x_lag, const Vec
   const auto cell_nodes = mesh.cell_nodes;
   const auto cell_neighbors = mesh.cell_neighbors;
   const auto cell_neighbor_face = mesh.cell_neighbor_face;
-  const auto dvol_t = swept_faces.dvol_t;
-  const auto moment_t = swept_faces.moment_t;
+  const auto dvol_r = swept_faces.dvol_r;
+  const auto moment_r = swept_faces.moment_r;
   Kokkos::parallel_for(
       "lagremap::remap::swept_faces", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
       KOKKOS_LAMBDA(const Index c) {
-        Index node[8];
         Vec3 x_cell_lag[8], x_cell_target[8];
         for (int p = 0; p < 8; ++p) {
-          node[p] = cell_nodes(c, p);
-          x_cell_lag[p] = loadVec3(x_lag, node[p]);
-          x_cell_target[p] = loadVec3(x_target, node[p]);
+          const Index node = cell_nodes(c, p);
+          x_cell_lag[p] = loadVec3(x_lag, node);
+          x_cell_target[p] = loadVec3(x_target, node);
         }
         for (int f = 0; f < 6; ++f) {
           const Index neighbor = cell_neighbors(c, f);
@@ -169,31 +178,29 @@ inline void computeSweptFaces(const Mesh& mesh, const Vec3View& x_lag, const Vec
           Vec3 q_lag[4], q_target[4];
           hex::faceNodes(x_cell_lag, f, q_lag);
           hex::faceNodes(x_cell_target, f, q_target);
-          swept::SweptRegion swept[4];
-          if (neighbor < 0 && swept::staysInOneAxisPlane(q_lag, q_target)) {
-            for (int k = 0; k < 4; ++k) swept[k] = {0.0, Vec3{0.0, 0.0, 0.0}};
-          } else {
+          // (the owner has the lower id: a tie goes to its given side)
+          swept::SweptRegion side[2] = {{0.0, Vec3{0.0, 0.0, 0.0}}, {0.0, Vec3{0.0, 0.0, 0.0}}};
+          if (!(neighbor < 0 && swept::staysInOneAxisPlane(q_lag, q_target))) {
+            swept::SweptRegion swept[4];
             swept::sweptFace(q_lag, q_target, swept);
+            for (int k = 0; k < 4; ++k) {
+              swept::SweptRegion& into = side[swept[k].volume > 0.0 ? kGainedSide : kGivenSide];
+              into.volume += swept[k].volume;
+              into.moment += swept[k].moment;
+            }
           }
-          for (int k = 0; k < 4; ++k) {
-            const Index t = sweptTriangleId(c, f, k);
-            dvol_t(t) = swept[k].volume;
-            storeVec3(moment_t, t, swept[k].moment);
+          for (int j = 0; j < 2; ++j) {
+            const Index r = sweptRegionId(c, f, j);
+            dvol_r(r) = side[j].volume;
+            storeVec3(moment_r, r, side[j].moment);
           }
           if (neighbor < 0) continue;
-          // The neighbour's face g lists the same nodes in the opposite
-          // direction, r_{j0 + m} = q_{-m} with r_{j0} = q_0, so our triangle
-          // (q_k, q_k+1) is its triangle (r_j, r_j+1) with j = j0 - k - 1.
+          // the neighbour gives what we gain and gains what we give
           const int g = cell_neighbor_face(c, f);
-          const Index q0_node = node[hex::faceNode(f, 0)];
-          int j0 = 0;
-          for (int j = 1; j < 4; ++j) {
-            if (cell_nodes(neighbor, hex::faceNode(g, j)) == q0_node) j0 = j;
-          }
-          for (int k = 0; k < 4; ++k) {
-            const Index t = sweptTriangleId(neighbor, g, (j0 + 3 - k) & 3);
-            dvol_t(t) = -swept[k].volume;
-            storeVec3(moment_t, t, -swept[k].moment);
+          for (int j = 0; j < 2; ++j) {
+            const Index r = sweptRegionId(neighbor, g, 1 - j);
+            dvol_r(r) = -side[j].volume;
+            storeVec3(moment_r, r, -side[j].moment);
           }
         }
       });

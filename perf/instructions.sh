@@ -8,7 +8,11 @@
 #   perf/instructions.sh PROBLEM [lagremap arguments...]
 #     e.g. perf/instructions.sh taylor --mode remap --scale 0.5
 #   Environment: LAGREMAP_EXE (default build/lagremap), STEPS_SHORT (10),
-#     STEPS_LONG (30), INSTRUCTIONS_TOP (rows, default 14).
+#     STEPS_LONG (30), INSTRUCTIONS_TOP (rows, default 14), FROM_STEP (0):
+#     count from a checkpoint of step FROM_STEP instead of the initial state
+#     (a plain run writes it first). The first steps of an impact leave most
+#     of the domain at rest, where the remap has nothing to sweep; mid-run
+#     counts are the representative ones.
 # Builds nothing (scripts/build.sh --target lagremap first); needs valgrind.
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -24,14 +28,25 @@ command -v valgrind >/dev/null || { echo "instructions: valgrind is not installe
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-profile() {  # profile STEPS: callgrind output of a run stopped after STEPS steps
+from=${FROM_STEP:-0}
+restart=()
+if [ "$from" -gt 0 ]; then
+  # The step limit ends a run with status 3 ("max_steps reached"), on purpose,
+  # and leaves its last state in a checkpoint.
+  OMP_PROC_BIND=false "$exe" --problem "$problem" "$@" --set "numerics.max_steps=$from" \
+    --quiet --output "$work/out.start" > "$work/log.start" 2>&1 || true
+  grep -q "max_steps reached" "$work/log.start" ||
+    { tail -n 5 "$work/log.start" >&2; echo "instructions: the run ended before $from steps" >&2; exit 1; }
+  restart=(--restart "$work/out.start/checkpoint.h5")
+fi
+
+profile() {  # profile STEPS: callgrind output of a run stopped after STEPS more steps
   local steps=$1
   shift
-  # The step limit ends the run with status 3 ("max_steps reached"), on purpose.
   OMP_NUM_THREADS=1 OMP_PROC_BIND=false valgrind --tool=callgrind \
     --callgrind-out-file="$work/cg.$steps" "$exe" --problem "$problem" "$@" \
-    --set "numerics.max_steps=$steps" --quiet --output "$work/out.$steps" \
-    > "$work/log.$steps" 2>&1 || true
+    ${restart[@]+"${restart[@]}"} --set "numerics.max_steps=$((from + steps))" --quiet \
+    --output "$work/out.$steps" > "$work/log.$steps" 2>&1 || true
   grep -q "max_steps reached" "$work/log.$steps" ||
     { tail -n 5 "$work/log.$steps" >&2; echo "instructions: the run ended before $steps steps" >&2; exit 1; }
   callgrind_annotate --threshold=100 "$work/cg.$steps" > "$work/annotate.$steps" 2>/dev/null
@@ -42,7 +57,7 @@ cells=$(/usr/bin/python3 -c "import json,sys; print(json.load(open(sys.argv[1]))
   "$work/out.$long/summary.json")
 
 /usr/bin/python3 - "$work/annotate.$short" "$work/annotate.$long" "$cells" \
-  "$((long - short))" "${INSTRUCTIONS_TOP:-14}" "$problem $*" <<'EOF'
+  "$((long - short))" "${INSTRUCTIONS_TOP:-14}" "$problem $*${FROM_STEP:+ (from step $from)}" <<'EOF'
 import re, sys
 
 short_file, long_file, cells, steps, top, title = sys.argv[1:7]

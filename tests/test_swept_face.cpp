@@ -127,8 +127,8 @@ TEST(SweptFace, CellRegionsTelescopeToTheVolumeAndMomentChange) {
     const SweptMeshCase sc = distortedCase(free_boundary, 314u);
     const HostMesh target = copyToHost(sc.mesh);
     const auto x_lag = Kokkos::create_mirror_view_and_copy(HostSpace(), sc.x_lag);
-    const auto dvol = Kokkos::create_mirror_view_and_copy(HostSpace(), sc.swept.dvol_t);
-    const auto moment = Kokkos::create_mirror_view_and_copy(HostSpace(), sc.swept.moment_t);
+    const auto dvol = Kokkos::create_mirror_view_and_copy(HostSpace(), sc.swept.dvol_r);
+    const auto moment = Kokkos::create_mirror_view_and_copy(HostSpace(), sc.swept.moment_r);
     const double h = (sc.block.hi.x - sc.block.lo.x) / sc.block.nx;
     double max_volume_error = 0.0, max_moment_error = 0.0, max_change = 0.0;
     for (Index c = 0; c < sc.mesh.n_cells; ++c) {
@@ -140,9 +140,9 @@ TEST(SweptFace, CellRegionsTelescopeToTheVolumeAndMomentChange) {
       ASSERT_GT(shape_lag.volume, 0.0) << "inverted Lagrangian cell " << c;
       double dvol_sum = 0.0;
       Vec3 moment_sum{0.0, 0.0, 0.0};
-      for (int t = 0; t < kSweptTrianglesPerCell; ++t) {
-        dvol_sum += dvol(kSweptTrianglesPerCell * c + t);
-        moment_sum += loadVec3(moment, kSweptTrianglesPerCell * c + t);
+      for (int r = 0; r < kSweptRegionsPerCell; ++r) {
+        dvol_sum += dvol(kSweptRegionsPerCell * c + r);
+        moment_sum += loadVec3(moment, kSweptRegionsPerCell * c + r);
       }
       const double volume_error =
           std::abs(shape_target.volume - (shape_lag.volume + dvol_sum)) / shape_target.volume;
@@ -166,41 +166,95 @@ TEST(SweptFace, CellRegionsTelescopeToTheVolumeAndMomentChange) {
   }
 }
 
-// The owner's 4 regions of an interior face are stored negated, bit for bit, in
-// the neighbour's matching slots; the match is found here from the node ids of
-// each triangle's edge, independently of the kernel's index arithmetic.
+// The gained and given regions of a face are the sums of its triangles by the
+// sign of their swept volume (DESIGN §5's upwind choice), a tie (dV_t = 0) on
+// the side of the lower cell id: recomputed here on the host from the face's
+// nodes, triangle by triangle, with the same additions in the same order.
+TEST(SweptFace, FaceSidesSumTheTrianglesByUpwindCell) {
+  const SweptMeshCase sc = distortedCase(true, 99u);
+  const HostMesh target = copyToHost(sc.mesh);
+  const auto x_lag = Kokkos::create_mirror_view_and_copy(HostSpace(), sc.x_lag);
+  const auto dvol = Kokkos::create_mirror_view_and_copy(HostSpace(), sc.swept.dvol_r);
+  const auto moment = Kokkos::create_mirror_view_and_copy(HostSpace(), sc.swept.moment_r);
+  const auto neighbors = Kokkos::create_mirror_view_and_copy(HostSpace(), sc.mesh.cell_neighbors);
+  int mixed_faces = 0;
+  for (Index c = 0; c < sc.mesh.n_cells; ++c) {
+    Vec3 x_cell_lag[8], x_cell_target[8];
+    cellNodes(x_lag, target.cell_nodes, c, x_cell_lag);
+    cellNodes(target.x_n, target.cell_nodes, c, x_cell_target);
+    for (int f = 0; f < 6; ++f) {
+      const Index n = neighbors(c, f);
+      if (n >= 0 && n < c) continue;  // checked from its owner (and by the next test)
+      Vec3 q_lag[4], q_target[4];
+      hex::faceNodes(x_cell_lag, f, q_lag);
+      hex::faceNodes(x_cell_target, f, q_target);
+      SweptRegion triangles[4];
+      swept::sweptFace(q_lag, q_target, triangles);
+      double gained = 0.0, given = 0.0;
+      Vec3 gained_moment{0.0, 0.0, 0.0}, given_moment{0.0, 0.0, 0.0};
+      int positive = 0;
+      for (const SweptRegion& t : triangles) {
+        const bool from_neighbor = t.volume > 0.0;  // a tie goes to c, the lower id
+        positive += from_neighbor;
+        (from_neighbor ? gained : given) += t.volume;
+        (from_neighbor ? gained_moment : given_moment) += t.moment;
+      }
+      mixed_faces += positive > 0 && positive < 4;
+      const Index r_gained = sweptRegionId(c, f, kGainedSide);
+      const Index r_given = sweptRegionId(c, f, kGivenSide);
+      EXPECT_EQ(dvol(r_gained), gained) << "cell " << c << " face " << f;
+      EXPECT_EQ(dvol(r_given), given) << "cell " << c << " face " << f;
+      EXPECT_GE(dvol(r_gained), 0.0);
+      EXPECT_LE(dvol(r_given), 0.0);
+      for (int d = 0; d < 3; ++d) {
+        EXPECT_EQ(moment(r_gained, d), (d == 0 ? gained_moment.x : d == 1 ? gained_moment.y
+                                                                          : gained_moment.z));
+        EXPECT_EQ(moment(r_given, d),
+                  (d == 0 ? given_moment.x : d == 1 ? given_moment.y : given_moment.z));
+      }
+    }
+  }
+  // the swirl twists faces: some have triangles on both sides
+  EXPECT_GT(mixed_faces, 10);
+}
+
+// The owner's 2 regions of an interior face are stored negated, bit for bit,
+// in the neighbour's slots of the same face, gained and given exchanged; the
+// neighbour's face is found here from the node ids, independently of the
+// kernel's index arithmetic.
 TEST(SweptFace, BothSidesOfAFaceHoldTheSameBitsUpToSign) {
   const SweptMeshCase sc = distortedCase(false, 27u);
   const auto cell_nodes = Kokkos::create_mirror_view_and_copy(HostSpace(), sc.mesh.cell_nodes);
   const auto neighbors = Kokkos::create_mirror_view_and_copy(HostSpace(), sc.mesh.cell_neighbors);
-  const auto dvol = Kokkos::create_mirror_view_and_copy(HostSpace(), sc.swept.dvol_t);
-  const auto moment = Kokkos::create_mirror_view_and_copy(HostSpace(), sc.swept.moment_t);
-  auto face_node = [&](Index c, int f, int k) { return cell_nodes(c, hex::faceNode(f, k & 3)); };
+  const auto dvol = Kokkos::create_mirror_view_and_copy(HostSpace(), sc.swept.dvol_r);
+  const auto moment = Kokkos::create_mirror_view_and_copy(HostSpace(), sc.swept.moment_r);
+  auto face_key = [&](Index c, int f) {
+    std::vector<Index> nodes;
+    for (int k = 0; k < 4; ++k) nodes.push_back(cell_nodes(c, hex::faceNode(f, k)));
+    std::sort(nodes.begin(), nodes.end());
+    return nodes;
+  };
   int matched = 0;
   for (Index c = 0; c < sc.mesh.n_cells; ++c)
     for (int f = 0; f < 6; ++f) {
       const Index n = neighbors(c, f);
       if (n < 0) continue;
-      for (int k = 0; k < 4; ++k) {
-        int found = 0;
-        for (int g = 0; g < 6; ++g)
-          for (int j = 0; j < 4; ++j) {
-            if (face_node(n, g, j) != face_node(c, f, k + 1) ||
-                face_node(n, g, j + 1) != face_node(c, f, k)) {
-              continue;
-            }
-            ++found;
-            const Index mine = sweptTriangleId(c, f, k), theirs = sweptTriangleId(n, g, j);
-            EXPECT_NE(dvol(mine), 0.0);
-            EXPECT_EQ(dvol(theirs), -dvol(mine));
-            for (int d = 0; d < 3; ++d) EXPECT_EQ(moment(theirs, d), -moment(mine, d));
-          }
-        EXPECT_EQ(found, 1) << "cell " << c << " face " << f << " triangle " << k;
-        matched += found;
+      int found = 0;
+      for (int g = 0; g < 6; ++g) {
+        if (face_key(n, g) != face_key(c, f)) continue;
+        ++found;
+        for (int side = 0; side < 2; ++side) {
+          const Index mine = sweptRegionId(c, f, side), theirs = sweptRegionId(n, g, 1 - side);
+          EXPECT_EQ(dvol(theirs), -dvol(mine));
+          for (int d = 0; d < 3; ++d) EXPECT_EQ(moment(theirs, d), -moment(mine, d));
+        }
+        EXPECT_NE(dvol(sweptRegionId(c, f, 0)) - dvol(sweptRegionId(c, f, 1)), 0.0);
       }
+      EXPECT_EQ(found, 1) << "cell " << c << " face " << f;
+      matched += found;
     }
   const int interior_faces = 5 * 5 * 4 + 6 * 4 * 4 + 6 * 5 * 3;
-  EXPECT_EQ(matched, 2 * 4 * interior_faces);
+  EXPECT_EQ(matched, 2 * interior_faces);
 }
 
 // Interior faces cancel pairwise and faces sliding in the box sides sweep
@@ -211,8 +265,8 @@ TEST(SweptFace, SweptVolumesAndMomentsSumToTheTotalChange) {
     const SweptMeshCase sc = distortedCase(free_boundary, 4242u);
     const HostMesh target = copyToHost(sc.mesh);
     const auto x_lag = Kokkos::create_mirror_view_and_copy(HostSpace(), sc.x_lag);
-    const auto dvol = Kokkos::create_mirror_view_and_copy(HostSpace(), sc.swept.dvol_t);
-    const auto moment = Kokkos::create_mirror_view_and_copy(HostSpace(), sc.swept.moment_t);
+    const auto dvol = Kokkos::create_mirror_view_and_copy(HostSpace(), sc.swept.dvol_r);
+    const auto moment = Kokkos::create_mirror_view_and_copy(HostSpace(), sc.swept.moment_r);
     double dvol_total = 0.0, volume_target = 0.0, volume_lag = 0.0;
     Vec3 moment_total{0, 0, 0}, moment_target{0, 0, 0}, moment_lag{0, 0, 0};
     for (Index t = 0; t < Index(dvol.extent(0)); ++t) {
