@@ -44,6 +44,12 @@ KOKKOS_INLINE_FUNCTION Vec3 faceCornerVectors(const Vec3 q[4], Vec3 w[4]) {
   return cornerVectorsOfTriangles(tri, w);
 }
 
+// Area vector of a face, the sum of its 4 triangles' (the face point cancels
+// from the sum): 1/2 (q_2 - q_0) x (q_3 - q_1), one cross product.
+KOKKOS_INLINE_FUNCTION Vec3 faceArea(const Vec3 q[4]) {
+  return 0.5 * cross(q[2] - q[0], q[3] - q[1]);
+}
+
 // Gathers the 4 nodes of face f from the 8 cell nodes.
 KOKKOS_INLINE_FUNCTION void faceNodes(const Vec3 x[8], int f, Vec3 q[4]) {
   for (int k = 0; k < 4; ++k) q[k] = x[faceNode(f, k)];

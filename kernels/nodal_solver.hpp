@@ -35,9 +35,9 @@ namespace detail {
 KOKKOS_INLINE_FUNCTION void mirrorAcrossFace(const Vec3 x[8], int f, const Vec3& centroid,
                                              const Vec3& velocity, Vec3& offset,
                                              Vec3& velocity_jump, Vec3& normal) {
-  Vec3 q[4], w[4];
+  Vec3 q[4];
   hex::faceNodes(x, f, q);
-  const Vec3 area = hex::faceCornerVectors(q, w);
+  const Vec3 area = hex::faceArea(q);
   normal = (1.0 / norm(area)) * area;
   const Vec3 face_point = 0.25 * (q[0] + q[1] + q[2] + q[3]);
   offset = (2.0 * dot(face_point - centroid, normal)) * normal;
@@ -175,25 +175,21 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
             pullBack(grad_sigma, dsigma_nb, pulled, gram);
             for (int p = 0; p < 8; ++p) length2[p] = dot(offsets[p], gram * offsets[p]);
             double phi_sigma = projectedLimiter<true, false>(pulled, offsets, length2);
+            // the unlimited excursions G d_p, kept for the node values
+            SymMat3 excursion[8];
             double largest2 = 0.0;  // acoustic bound (above), Frobenius norm
             for (int p = 0; p < 8; ++p) {
               const Vec3& d = offsets[p];
-              const SymMat3 excursion{dot(grad_sigma[0], d), dot(grad_sigma[1], d),
-                                      dot(grad_sigma[2], d), dot(grad_sigma[3], d),
-                                      dot(grad_sigma[4], d), dot(grad_sigma[5], d)};
-              const double size2 = ddot(excursion, excursion);
+              excursion[p] = SymMat3{dot(grad_sigma[0], d), dot(grad_sigma[1], d),
+                                     dot(grad_sigma[2], d), dot(grad_sigma[3], d),
+                                     dot(grad_sigma[4], d), dot(grad_sigma[5], d)};
+              const double size2 = ddot(excursion[p], excursion[p]);
               largest2 = size2 > largest2 ? size2 : largest2;
             }
             if (phi_sigma * phi_sigma * largest2 > stress_scale * stress_scale) {
               phi_sigma = stress_scale / math::sqrt(largest2);
             }
-            for (int i = 0; i < 6; ++i) grad_sigma[i] = phi_sigma * grad_sigma[i];
-            for (int p = 0; p < 8; ++p) {
-              const Vec3& d = offsets[p];
-              sigma_node[p] +=
-                  SymMat3{dot(grad_sigma[0], d), dot(grad_sigma[1], d), dot(grad_sigma[2], d),
-                          dot(grad_sigma[3], d), dot(grad_sigma[4], d), dot(grad_sigma[5], d)};
-            }
+            for (int p = 0; p < 8; ++p) sigma_node[p] += phi_sigma * excursion[p];
           } else {
             // a scalar: Barth-Jespersen in its two-division form (the same phi
             // as projectedLimiter<false, false>)
@@ -246,14 +242,15 @@ KOKKOS_INLINE_FUNCTION SymMat3 constrainedMatrix(const SymMat3& projector, const
                           {projector.xy, projector.yy, projector.yz},
                           {projector.xz, projector.yz, projector.zz}};
   const double M[3][3] = {{m.xx, m.xy, m.xz}, {m.xy, m.yy, m.yz}, {m.xz, m.yz, m.zz}};
-  double PM[3][3], A[3][3];
+  double PM[3][3];
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
       PM[i][j] = P[i][0] * M[0][j] + P[i][1] * M[1][j] + P[i][2] * M[2][j];
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      A[i][j] = PM[i][0] * P[0][j] + PM[i][1] * P[1][j] + PM[i][2] * P[2][j] + (i == j) - P[i][j];
-  return {A[0][0], A[1][1], A[2][2], A[0][1], A[1][2], A[0][2]};
+  // (P M P)_ij = (PM)_i . P_j, symmetric: the six entries of one triangle
+  auto entry = [&](int i, int j) {
+    return PM[i][0] * P[0][j] + PM[i][1] * P[1][j] + PM[i][2] * P[2][j] + (i == j) - P[i][j];
+  };
+  return {entry(0, 0), entry(1, 1), entry(2, 2), entry(0, 1), entry(1, 2), entry(0, 2)};
 }
 
 }  // namespace detail

@@ -76,13 +76,13 @@ KOKKOS_INLINE_FUNCTION SweptRegion sweptTensorRule(const Vec3& a, const Vec3& b,
   return {volume, a * volume + (1.0 / 12.0) * moment};
 }
 
-// What the kernels use: the closed-formula volume of DESIGN §5 (the rule's own
-// volume agrees to round-off) and the tensor-rule first moment.
+// What the kernels use: the tensor rule's volume and first moment, from the
+// same sums (the closed formula sweptVolume agrees to round-off, and costs
+// three more cross products).
 KOKKOS_INLINE_FUNCTION SweptRegion sweptTriangle(const Vec3& a, const Vec3& b, const Vec3& c,
                                                  const Vec3& a_target, const Vec3& b_target,
                                                  const Vec3& c_target) {
-  const SweptRegion rule = sweptTensorRule(a, b, c, a_target, b_target, c_target);
-  return {sweptVolume(a, b, c, a_target, b_target, c_target), rule.moment};
+  return sweptTensorRule(a, b, c, a_target, b_target, c_target);
 }
 
 // The 4 swept triangles of one face: q_lag / q_target are its 4 nodes in
@@ -103,8 +103,8 @@ KOKKOS_INLINE_FUNCTION void sweptFace(const Vec3 q_lag[4], const Vec3 q_target[4
 // True when a face's Lagrangian and target positions all lie in one plane
 // normal to a coordinate axis: a wall or symmetry plane along x, y or z, in
 // which the nodes slide (their projected velocity has an exact zero normal
-// component). The region it sweeps is flat, so dV_t = 0 and sweptVolume gives
-// exactly 0 too (every cross product is normal to the plane, every
+// component). The region it sweeps is flat, so dV_t = 0 and the tensor rule
+// gives exactly 0 too (every cross product is normal to the plane, every
 // displacement in it): a one-cell slab's two faces on its symmetry planes,
 // half of its swept faces, need no swept-region computation.
 KOKKOS_INLINE_FUNCTION bool staysInOneAxisPlane(const Vec3 q_lag[4], const Vec3 q_target[4]) {

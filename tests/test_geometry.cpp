@@ -101,7 +101,9 @@ TEST(Geometry, FusedCellGeometryMatchesTheReferenceFormulas) {
     for (int f = 0; f < 6; ++f) {
       Vec3 q[4], w[4];
       hex::faceNodes(x, f, q);
-      hex::faceCornerVectors(q, w);
+      const Vec3 face_area = hex::faceCornerVectors(q, w);
+      // the one-cross-product area vector is the 4 triangles' sum
+      EXPECT_LT(norm(hex::faceArea(q) - face_area), 1e-14 * norm(face_area));
       for (int k = 0; k < 4; ++k) {
         const int p = hex::faceNode(f, k);
         normal_moment[p] += outerSelf(w[k], 1.0 / norm(w[k]));
