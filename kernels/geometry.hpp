@@ -120,34 +120,43 @@ KOKKOS_INLINE_FUNCTION bool isSolidBody(const State& s, Index c, int k, Vec3& no
   return dot(normal, normal) > 0.5;  // zero where alpha^k had no gradient
 }
 
-KOKKOS_INLINE_FUNCTION double relaxationVolume(const State& s, Index c, int k) {
-  const auto relaxes = [&](int m) {
-    return s.alpha_ck0(c, m) > 0.0 && s.alpha_ck0(c, m) >= s.alpha_trace && s.w_ck0(c, m) > 0.0;
-  };
-  const auto normalStress = [&](int m) {  // -P^m
-    double sigma = -s.p_ck(c, m);
-    Vec3 n;
-    if (isSolidBody(s, c, m, n)) sigma += dot(n, loadSym(s.S_ck0, c, m) * n);
-    return sigma;
-  };
-  if (!relaxes(k)) return 0.0;
+// relax^k of every material of cell c at once (zero for those that take no
+// part): each normal stress -P^m once, not once per pair and per caller.
+KOKKOS_INLINE_FUNCTION void relaxationVolumes(const State& s, Index c,
+                                              double relax[kMaxMaterials]) {
+  const int n_materials = s.n_materials;
+  bool relaxes[kMaxMaterials];
+  double sigma[kMaxMaterials];  // -P^m
   double weight_sum = 0.0;
-  for (int m = 0; m < s.n_materials; ++m) weight_sum += relaxes(m) ? s.w_ck0(c, m) : 0.0;
-  const auto unlimited = [&](int m) {
-    double pull = 0.0;
-    for (int n = 0; n < s.n_materials; ++n) {
-      if (n != m && relaxes(n)) pull += s.w_ck0(c, n) * (normalStress(n) - normalStress(m));
-    }
-    return s.vol_c0(c) * (s.w_ck0(c, m) / weight_sum) * pull;
-  };
+  for (int m = 0; m < n_materials; ++m) {
+    relaxes[m] =
+        s.alpha_ck0(c, m) > 0.0 && s.alpha_ck0(c, m) >= s.alpha_trace && s.w_ck0(c, m) > 0.0;
+    relax[m] = 0.0;
+    if (!relaxes[m]) continue;
+    weight_sum += s.w_ck0(c, m);
+    sigma[m] = -s.p_ck(c, m);
+    Vec3 n;
+    if (isSolidBody(s, c, m, n)) sigma[m] += dot(n, loadSym(s.S_ck0, c, m) * n);
+  }
   double scale = 1.0;
-  for (int m = 0; m < s.n_materials; ++m) {
-    if (!relaxes(m)) continue;
-    const double change = math::fabs(unlimited(m));
+  for (int m = 0; m < n_materials; ++m) {
+    if (!relaxes[m]) continue;
+    double pull = 0.0;
+    for (int n = 0; n < n_materials; ++n) {
+      if (n != m && relaxes[n]) pull += s.w_ck0(c, n) * (sigma[n] - sigma[m]);
+    }
+    relax[m] = s.vol_c0(c) * (s.w_ck0(c, m) / weight_sum) * pull;
+    const double change = math::fabs(relax[m]);
     const double allowed = kMaxRelaxation * s.alpha_ck0(c, m) * s.vol_c0(c);
     if (change * scale > allowed) scale = allowed / change;
   }
-  return scale * unlimited(k);
+  for (int m = 0; m < n_materials; ++m) relax[m] *= scale;
+}
+
+KOKKOS_INLINE_FUNCTION double relaxationVolume(const State& s, Index c, int k) {
+  double relax[kMaxMaterials];
+  relaxationVolumes(s, c, relax);
+  return relax[k];
 }
 
 KOKKOS_INLINE_FUNCTION void shareVolumeChange(const State& s, Index c, double volume) {
@@ -160,13 +169,15 @@ KOKKOS_INLINE_FUNCTION void shareVolumeChange(const State& s, Index c, double vo
   }
   if (present < 2 || !(weight_sum > 0.0)) return;
   const double volume_start = s.vol_c0(c);
+  double relax[kMaxMaterials];
+  relaxationVolumes(s, c, relax);
   double alpha_sum = 0.0;
   for (int k = 0; k < s.n_materials; ++k) {
     const double alpha_start = s.alpha_ck0(c, k);
     if (!(alpha_start > 0.0)) continue;
     const double material_volume = alpha_start * volume_start +
                                    (s.w_ck0(c, k) / weight_sum) * (volume - volume_start) +
-                                   relaxationVolume(s, c, k);
+                                   relax[k];
     // a material cannot be squeezed out: keep a sliver of its start volume
     const double kept = kMinVolumeKept * alpha_start * volume_start;
     const double alpha = (material_volume > kept ? material_volume : kept) / volume;
