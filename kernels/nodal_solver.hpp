@@ -92,11 +92,10 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
           Vec3 rhs_v[3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, rhs_p{0, 0, 0};
           Vec3 rhs_sigma[6] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
           // neighbour jumps for the limiters; a free side leaves a zero jump
-          Vec3 dv_nb[6] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+          Vec3 dv_nb[6];
           SymMat3 dsigma_nb[6];
           Bounds pb(p_cell);
           for (int f = 0; f < 6; ++f) {
-            if (solid) dsigma_nb[f] = identitySym(0.0);
             const Index nb = neighbors(c, f);
             Vec3 dx, dv, normal;
             double dp = 0.0;
@@ -112,6 +111,8 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
               detail::mirrorAcrossFace(x, f, centroid, v_cell, dx, dv, normal);
               if (solid) dsigma = mirrorJump(sigma_cell, normal);
             } else {
+              dv_nb[f] = Vec3{0, 0, 0};
+              if (solid) dsigma_nb[f] = identitySym(0.0);
               continue;
             }
             lsq.addOffset(dx);

@@ -202,9 +202,14 @@ inline void remapGradients(const Mesh& mesh, const State& state, const RemapLayo
           reach2 = dot(vertex[p], vertex[p]) > reach2 ? dot(vertex[p], vertex[p]) : reach2;
         }
         reach(c) = math::sqrt(reach2);
+        // A mixed cell's rho^k, e^k, V and tensors are swept constant
+        // (remapUpdate): only its volume fractions need a gradient.
+        int materials_present = 0;
+        for (int k = 0; k < layout.n_materials; ++k) materials_present += q(c, layout.alpha(k)) > 0.0;
+        const int reconstructed_end = materials_present > 1 ? layout.n_materials : layout.n_variables;
         for (int v = 0; v < layout.n_variables; ++v) {
           if (!layout.reconstructed(v)) continue;
-          if (!layout.hasPrimitive(q, c, v)) {
+          if (v >= reconstructed_end || !layout.hasPrimitive(q, c, v)) {
             for (int d = 0; d < 3; ++d) gradient(c, v, d) = 0.0;
             continue;
           }
