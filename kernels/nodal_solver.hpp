@@ -171,22 +171,21 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
           if (solid) {
             Vec3 grad_sigma[6];
             for (int i = 0; i < 6; ++i) grad_sigma[i] = inv * rhs_sigma[i];
-            Vec3 pulled[6];
-            SymMat3 gram;
-            pullBack(grad_sigma, dsigma_nb, pulled, gram);
-            for (int p = 0; p < 8; ++p) length2[p] = dot(offsets[p], gram * offsets[p]);
-            double phi_sigma = projectedLimiter<true, false>(pulled, offsets, length2);
-            // the unlimited excursions G d_p, kept for the node values
+            // the unlimited excursions G d_p (kept for the node values) and
+            // their Frobenius squares, the limiter's length2
             SymMat3 excursion[8];
-            double largest2 = 0.0;  // acoustic bound (above), Frobenius norm
+            double largest2 = 0.0;  // acoustic bound (above)
             for (int p = 0; p < 8; ++p) {
               const Vec3& d = offsets[p];
               excursion[p] = SymMat3{dot(grad_sigma[0], d), dot(grad_sigma[1], d),
                                      dot(grad_sigma[2], d), dot(grad_sigma[3], d),
                                      dot(grad_sigma[4], d), dot(grad_sigma[5], d)};
-              const double size2 = ddot(excursion[p], excursion[p]);
-              largest2 = size2 > largest2 ? size2 : largest2;
+              length2[p] = ddot(excursion[p], excursion[p]);
+              largest2 = length2[p] > largest2 ? length2[p] : largest2;
             }
+            Vec3 pulled[6];
+            pullBack(grad_sigma, dsigma_nb, pulled);
+            double phi_sigma = projectedLimiter<true, false>(pulled, offsets, length2);
             if (phi_sigma * phi_sigma * largest2 > stress_scale * stress_scale) {
               phi_sigma = stress_scale / math::sqrt(largest2);
             }
@@ -419,7 +418,8 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
   }
   const bool mixed = present > 1;
   if (!mixed) s.e_ck(c, last) = e_new;
-  if (!mixed && !s.has_solids) return;
+  // a pure fluid cell has no deviator to update (whatever its neighbours)
+  if (!mixed && s.materials(last).strength == StrengthKind::None) return;
   const Mat3 gradient = velocityGradient(cell_nodes, s, c);
   const double threshold = mixed ? s.alpha_trace : 0.0;
   // W^k = dt v (-p^k share^k tr L + alpha^k S^k : L), v the stage-start volume

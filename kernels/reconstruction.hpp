@@ -143,7 +143,7 @@ KOKKOS_INLINE_FUNCTION double inner(const Vec3& a, const Vec3& b) {
 // across local face f (VTK order: 0 x-, 1 x+, 2 y-, 3 y+, 4 z-, 5 z+; a
 // missing neighbour is a zero jump, which changes nothing) and
 // length2[p] = |delta_p|^2. A vector passes its jumps and excursions
-// (directions = delta_p); a tensor passes the pulled-back form of pullBack()
+// (directions = delta_p); a tensor passes the pulled-back jumps of pullBack()
 // with directions = d_p, whose cost does not grow with its six components.
 template <bool plateau_guard, bool vertex_sums, class Field>
 KOKKOS_INLINE_FUNCTION double projectedLimiter(const Field jumps[6], const Field directions[8],
@@ -183,16 +183,14 @@ KOKKOS_INLINE_FUNCTION double projectedLimiter(const Field jumps[6], const Field
   return limiter;
 }
 
-// Pulled-back form of a symmetric tensor field for projectedLimiter: with
+// Pulled-back jumps of a symmetric tensor field for projectedLimiter: with
 // G's rows the gradients of the components xx, yy, zz, xy, yz, xz (the
 // off-diagonal ones count twice in the Frobenius product),
-// j : delta_p = (G^T j) . d_p and |delta_p|^2 = d_p . (G^T G) d_p; returns the
-// pulled-back jumps w = G^T j and the Gram matrix G^T G.
+// j : delta_p = (G^T j) . d_p; returns w = G^T j. (|delta_p|^2, the limiter's
+// length2, is the Frobenius square of the excursion delta_p = G d_p itself,
+// which the caller has at hand.)
 KOKKOS_INLINE_FUNCTION void pullBack(const Vec3 gradients[6], const SymMat3 jumps[6],
-                                     Vec3 pulled[6], SymMat3& gram) {
-  gram = outerSelf(gradients[0], 1.0) + outerSelf(gradients[1], 1.0) +
-         outerSelf(gradients[2], 1.0) + outerSelf(gradients[3], 2.0) +
-         outerSelf(gradients[4], 2.0) + outerSelf(gradients[5], 2.0);
+                                     Vec3 pulled[6]) {
   for (int j = 0; j < 6; ++j) {
     const SymMat3& t = jumps[j];
     pulled[j] = t.xx * gradients[0] + t.yy * gradients[1] + t.zz * gradients[2] +

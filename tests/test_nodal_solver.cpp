@@ -276,10 +276,14 @@ TEST(Reconstruction, ProjectedLimiterIsFrameIndependent) {
     }
     const auto pulled_phi = [&](const Vec3 grads[6], const SymMat3 tj[6]) {
       Vec3 pulled[6];
-      SymMat3 gram;
-      pullBack(grads, tj, pulled, gram);
-      double len2[8];
-      for (int p = 0; p < 8; ++p) len2[p] = dot(offsets[p], gram * offsets[p]);
+      pullBack(grads, tj, pulled);
+      double len2[8];  // as computeCornerTerms: the Frobenius square of G d_p
+      for (int p = 0; p < 8; ++p) {
+        const Vec3& d = offsets[p];
+        const SymMat3 excursion{dot(grads[0], d), dot(grads[1], d), dot(grads[2], d),
+                                dot(grads[3], d), dot(grads[4], d), dot(grads[5], d)};
+        len2[p] = ddot(excursion, excursion);
+      }
       return limit(pulled, offsets, len2);
     };
     const double phi_t = pulled_phi(gradients, tjumps);
