@@ -323,8 +323,8 @@ KOKKOS_INLINE_FUNCTION void cellThermoOnGeometry(const hex::CellGeometry& geo, c
 // StageEnd::ForRemap's part of the above at the end of a stage: volume,
 // centroid and volume shares, and the checks that need no equation of state
 // (a tangled cell, a non-finite energy or density). Proposes no time step.
-KOKKOS_INLINE_FUNCTION void cellShapeForRemap(const hex::CellShape& shape, const State& s,
-                                              Index c, StepLimit& best) {
+KOKKOS_INLINE_FUNCTION void cellShapeForRemap(const hex::CellShape& shape, const State& s, Index c,
+                                              StepLimit& best) {
   const double volume = shape.volume;
   s.vol_c(c) = volume;
   storeVec3(s.x_c, c, shape.centroid);

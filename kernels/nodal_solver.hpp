@@ -177,9 +177,9 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
             double largest2 = 0.0;  // acoustic bound (above)
             for (int p = 0; p < 8; ++p) {
               const Vec3& d = offsets[p];
-              excursion[p] = SymMat3{dot(grad_sigma[0], d), dot(grad_sigma[1], d),
-                                     dot(grad_sigma[2], d), dot(grad_sigma[3], d),
-                                     dot(grad_sigma[4], d), dot(grad_sigma[5], d)};
+              excursion[p] =
+                  SymMat3{dot(grad_sigma[0], d), dot(grad_sigma[1], d), dot(grad_sigma[2], d),
+                          dot(grad_sigma[3], d), dot(grad_sigma[4], d), dot(grad_sigma[5], d)};
               length2[p] = ddot(excursion[p], excursion[p]);
               largest2 = length2[p] > largest2 ? length2[p] : largest2;
             }

@@ -75,7 +75,6 @@ struct RemapLayout {
     const bool has_volume = q(c, alpha(k)) > 0.0;
     return v > kinetic() ? has_volume : has_volume && q(c, mass(k)) > 0.0;
   }
-
 };
 
 struct RemapControls {
@@ -90,10 +89,10 @@ struct RemapControls {
 // Per-cell work arrays of the remap, written by remapDensities and
 // remapGradients and read by remapUpdate.
 struct RemapFields {
-  MatRealView density;               // (cell, column) per unit volume on the Lagrangian cell
-  MatRealView primitive;             // (cell, column) primitive variable, where the cell has it
-  DeviceView<Real** [3]> gradient;   // (cell, column, xyz) of the primitive, limited
-  RealView reach;                    // largest centroid-vertex distance of each Lagrangian cell
+  MatRealView density;              // (cell, column) per unit volume on the Lagrangian cell
+  MatRealView primitive;            // (cell, column) primitive variable, where the cell has it
+  DeviceView<Real** [3]> gradient;  // (cell, column, xyz) of the primitive, limited
+  RealView reach;                   // largest centroid-vertex distance of each Lagrangian cell
 };
 
 inline RemapFields allocateRemapFields(Index n_cells, const RemapLayout& layout) {
@@ -205,8 +204,10 @@ inline void remapGradients(const Mesh& mesh, const State& state, const RemapLayo
         // A mixed cell's rho^k, e^k, V and tensors are swept constant
         // (remapUpdate): only its volume fractions need a gradient.
         int materials_present = 0;
-        for (int k = 0; k < layout.n_materials; ++k) materials_present += q(c, layout.alpha(k)) > 0.0;
-        const int reconstructed_end = materials_present > 1 ? layout.n_materials : layout.n_variables;
+        for (int k = 0; k < layout.n_materials; ++k)
+          materials_present += q(c, layout.alpha(k)) > 0.0;
+        const int reconstructed_end =
+            materials_present > 1 ? layout.n_materials : layout.n_variables;
         for (int v = 0; v < layout.n_variables; ++v) {
           if (!layout.reconstructed(v)) continue;
           if (v >= reconstructed_end || !layout.hasPrimitive(q, c, v)) {
@@ -426,8 +427,8 @@ inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state,
               // alpha^k T^k: the volume's flux times T^k, second order in a
               // pure upwind cell (as rho^k and e^k above).
               for (int i = 0; i < 6; ++i) {
-                integral[column + i] += alpha_flux * w(up, column + i) +
-                                        (pure_up ? alpha_up * slope(column + i) : 0.0);
+                integral[column + i] +=
+                    alpha_flux * w(up, column + i) + (pure_up ? alpha_up * slope(column + i) : 0.0);
               }
             }
             // Momentum and kinetic energy ride on the mass flux dm as a rigid
@@ -446,8 +447,7 @@ inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state,
             double kinetic_flux = 0.0;
             for (int d = 0; d < 3; ++d) {
               const int column = layout.momentum(d);
-              const double v_region =
-                  w(up, column) + (pure_up ? slope(column) * inv_dvol : 0.0);
+              const double v_region = w(up, column) + (pure_up ? slope(column) * inv_dvol : 0.0);
               integral[column] += mass_flux_total * v_region;
               kinetic_flux += mass_flux_total * 0.5 * v_region * v_region;
             }

@@ -305,9 +305,7 @@ void BM_RemapGradients(benchmark::State& state) {
   Bench& b = *g_bench;
   RemapInputs& r = *g_remap;
   r.prepare(b);
-  timedLoop(state, [&] {
-    remapGradients(b.mesh(), b.state(), r.layout, r.controls, r.fields);
-  });
+  timedLoop(state, [&] { remapGradients(b.mesh(), b.state(), r.layout, r.controls, r.fields); });
   setCellRate(state, "cells_per_second");
 }
 
@@ -330,8 +328,8 @@ void BM_RemapFluxes(benchmark::State& state) {
     r.prepare(b);  // untimed
     Kokkos::fence();
     Kokkos::Timer timer;
-    const RemapBoundaryFlux crossed = remapUpdate(b.mesh(), b.state(), r.layout, r.controls,
-                                                  r.fields, r.swept);
+    const RemapBoundaryFlux crossed =
+        remapUpdate(b.mesh(), b.state(), r.layout, r.controls, r.fields, r.swept);
     Kokkos::fence();
     state.SetIterationTime(timer.seconds());
     benchmark::DoNotOptimize(crossed.v[0]);

@@ -207,10 +207,12 @@ TEST(SweptFace, FaceSidesSumTheTrianglesByUpwindCell) {
       EXPECT_GE(dvol(r_gained), 0.0);
       EXPECT_LE(dvol(r_given), 0.0);
       for (int d = 0; d < 3; ++d) {
-        EXPECT_EQ(moment(r_gained, d), (d == 0 ? gained_moment.x : d == 1 ? gained_moment.y
-                                                                          : gained_moment.z));
-        EXPECT_EQ(moment(r_given, d),
-                  (d == 0 ? given_moment.x : d == 1 ? given_moment.y : given_moment.z));
+        EXPECT_EQ(moment(r_gained, d), (d == 0   ? gained_moment.x
+                                        : d == 1 ? gained_moment.y
+                                                 : gained_moment.z));
+        EXPECT_EQ(moment(r_given, d), (d == 0   ? given_moment.x
+                                       : d == 1 ? given_moment.y
+                                                : given_moment.z));
       }
     }
   }
