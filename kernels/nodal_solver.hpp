@@ -77,20 +77,20 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
         Vec3 v_node[8];
         double p_node[8];       // fluid: sigma = -p I
         SymMat3 sigma_node[8];  // solid
-        for (int p = 0; p < 8; ++p) {
-          v_node[p] = v_cell;
-          p_node[p] = p_cell;
-        }
-        if (solid) {
-          for (int p = 0; p < 8; ++p) sigma_node[p] = sigma_cell;
-        }
-        if (second_order) {
+        if (!second_order) {    // piecewise constant
+          for (int p = 0; p < 8; ++p) {
+            v_node[p] = v_cell;
+            p_node[p] = p_cell;
+            sigma_node[p] = sigma_cell;
+          }
+        } else {
           Vec3 x[8];
           for (int p = 0; p < 8; ++p) x[p] = loadVec3(x_n, cell_nodes(c, p));
           const Vec3 centroid = loadVec3(s.x_c, c);
           LeastSquares lsq;
           Vec3 rhs_v[3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, rhs_p{0, 0, 0};
-          Vec3 rhs_sigma[6] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+          Vec3 rhs_sigma[6];  // (a solid's only)
+          for (int i = 0; i < (solid ? 6 : 0); ++i) rhs_sigma[i] = Vec3{0, 0, 0};
           // neighbour jumps for the limiters; a free side leaves a zero jump
           Vec3 dv_nb[6];
           SymMat3 dsigma_nb[6];
@@ -167,7 +167,7 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
           const double phi_acoustic_v = phi_v * phi_v * longest2 > sound_speed * sound_speed
                                             ? sound_speed / math::sqrt(longest2)
                                             : phi_v;
-          for (int p = 0; p < 8; ++p) v_node[p] += phi_acoustic_v * dv_node[p];
+          for (int p = 0; p < 8; ++p) v_node[p] = v_cell + phi_acoustic_v * dv_node[p];
           if (solid) {
             Vec3 grad_sigma[6];
             for (int i = 0; i < 6; ++i) grad_sigma[i] = inv * rhs_sigma[i];
@@ -189,7 +189,7 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
             if (phi_sigma * phi_sigma * largest2 > stress_scale * stress_scale) {
               phi_sigma = stress_scale / math::sqrt(largest2);
             }
-            for (int p = 0; p < 8; ++p) sigma_node[p] += phi_sigma * excursion[p];
+            for (int p = 0; p < 8; ++p) sigma_node[p] = sigma_cell + phi_sigma * excursion[p];
           } else {
             // a scalar: Barth-Jespersen in its two-division form (the same phi
             // as projectedLimiter<false, false>)
@@ -208,26 +208,26 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
               largest = size > largest ? size : largest;
             }
             if (phi_p * largest > stress_scale) phi_p = stress_scale / largest;
-            for (int p = 0; p < 8; ++p) p_node[p] += phi_p * dp_node[p];
+            for (int p = 0; p < 8; ++p) p_node[p] = p_cell + phi_p * dp_node[p];
           }
         }
 
-        // --- B_cp = M_cp V_c(p) - sigma_c(p) A_cp
-        for (int p = 0; p < 8; ++p) {
+        // --- B_cp = M_cp V_c(p) - sigma_c(p) A_cp (a loop per case: the
+        // compiler does not take the tests out of the loop by itself)
+        const auto storeRhs = [&](int p, const Vec3& stress_force) {
           const Index corner = 8 * c + p;
-          const SymMat3 impedance = loadSym(s.M_cp, corner);
-          const Vec3 corner_vec = loadVec3(s.A_cp, corner);
-          const Vec3 stress_force = solid ? -(sigma_node[p] * corner_vec) : p_node[p] * corner_vec;
-          const Vec3 rhs = impedance * v_node[p] + stress_force;
-          storeVec3(s.B_cp, corner, rhs);
-          if (atomics) {
-            const Index node = cell_nodes(c, p);
-            const double m[6] = {impedance.xx, impedance.yy, impedance.zz,
-                                 impedance.xy, impedance.yz, impedance.xz};
-            for (int i = 0; i < 6; ++i) Kokkos::atomic_add(&s.M_n(node, i), m[i]);
-            Kokkos::atomic_add(&s.B_n(node, 0), rhs.x);
-            Kokkos::atomic_add(&s.B_n(node, 1), rhs.y);
-            Kokkos::atomic_add(&s.B_n(node, 2), rhs.z);
+          storeVec3(s.B_cp, corner, loadSym(s.M_cp, corner) * v_node[p] + stress_force);
+        };
+        if (solid) {
+          for (int p = 0; p < 8; ++p) storeRhs(p, -(sigma_node[p] * loadVec3(s.A_cp, 8 * c + p)));
+        } else {
+          for (int p = 0; p < 8; ++p) storeRhs(p, p_node[p] * loadVec3(s.A_cp, 8 * c + p));
+        }
+        if (atomics) {
+          for (int p = 0; p < 8; ++p) {
+            const Index corner = 8 * c + p, node = cell_nodes(c, p);
+            for (int i = 0; i < 6; ++i) Kokkos::atomic_add(&s.M_n(node, i), s.M_cp(corner, i));
+            for (int i = 0; i < 3; ++i) Kokkos::atomic_add(&s.B_n(node, i), s.B_cp(corner, i));
           }
         }
       });
