@@ -237,7 +237,20 @@ namespace detail {
 
 // P M P + (I - P): SPD when M is, and its solution with right-hand side P B
 // lies in the range of P and satisfies P (M V - B) = 0 (Lagrange multipliers).
+// A projector onto axis planes or axes (a wall or symmetry plane normal to x,
+// y or z, or two of them) is diagonal, of zeros and ones: P M P keeps the
+// entries of M in the free directions, the same numbers the general product
+// gives (up to the sign of a zero), in a tenth of the operations.
 KOKKOS_INLINE_FUNCTION SymMat3 constrainedMatrix(const SymMat3& projector, const SymMat3& m) {
+  if (projector.xy == 0.0 && projector.yz == 0.0 && projector.xz == 0.0) {
+    const SymMat3& p = projector;
+    return {(p.xx * m.xx) * p.xx + 1.0 - p.xx,
+            (p.yy * m.yy) * p.yy + 1.0 - p.yy,
+            (p.zz * m.zz) * p.zz + 1.0 - p.zz,
+            (p.xx * m.xy) * p.yy,
+            (p.yy * m.yz) * p.zz,
+            (p.xx * m.xz) * p.zz};
+  }
   const double P[3][3] = {{projector.xx, projector.xy, projector.xz},
                           {projector.xy, projector.yy, projector.yz},
                           {projector.xz, projector.yz, projector.zz}};
@@ -251,6 +264,14 @@ KOKKOS_INLINE_FUNCTION SymMat3 constrainedMatrix(const SymMat3& projector, const
     return PM[i][0] * P[0][j] + PM[i][1] * P[1][j] + PM[i][2] * P[2][j] + (i == j) - P[i][j];
   };
   return {entry(0, 0), entry(1, 1), entry(2, 2), entry(0, 1), entry(1, 2), entry(0, 2)};
+}
+
+// P v, with the axis projector's shortcut of constrainedMatrix (same numbers).
+KOKKOS_INLINE_FUNCTION Vec3 project(const SymMat3& projector, const Vec3& v) {
+  if (projector.xy == 0.0 && projector.yz == 0.0 && projector.xz == 0.0) {
+    return {projector.xx * v.x, projector.yy * v.y, projector.zz * v.z};
+  }
+  return projector * v;
 }
 
 }  // namespace detail
@@ -311,14 +332,15 @@ inline void nodalSolve(const Mesh& mesh, const State& state, const CornerControl
         if (node_constrained(n)) {
           const SymMat3 projector = loadSym(node_projector, n);
           const SymMat3 solver = inverse(detail::constrainedMatrix(projector, impedance));
-          velocity = projector * (solver * (projector * (rhs + load)));
+          velocity = detail::project(projector, solver * detail::project(projector, rhs + load));
           // One step of iterative refinement: the tangential balance then
           // holds to the last bit, which is what the energy audit sees.
-          velocity += projector * (solver * (projector * (rhs + load - impedance * velocity)));
+          velocity += detail::project(
+              projector, solver * detail::project(projector, rhs + load - impedance * velocity));
           // The constrained directions' part of M V - B - load (the Lagrange
           // multipliers); its tangential part is the solver's round-off.
           const Vec3 residual = impedance * velocity - rhs - load;
-          reaction = residual - projector * residual;
+          reaction = residual - detail::project(projector, residual);
         } else {
           const SymMat3 solver = inverse(impedance);
           velocity = solver * (rhs + load);

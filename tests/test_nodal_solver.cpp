@@ -401,6 +401,40 @@ TEST(NodalSolver, ConstrainedVelocitiesSatisfyPlanesAndTangentialBalance) {
   }
 }
 
+// Axis-plane projectors (walls and symmetry planes normal to x, y, z, alone
+// or two together) take constrainedMatrix's and project's shortcut: the same
+// numbers as P M P + (I - P) and P v multiplied out in full.
+TEST(NodalSolver, AxisProjectorShortcutGivesTheFullProduct) {
+  for (int trial = 0; trial < 50; ++trial) {
+    const SymMat3 m = randomSpd();
+    const Vec3 v = randomVec(2.0);
+    for (int mask = 1; mask < 8; ++mask) {  // the constrained axes
+      const double free[3] = {(mask & 1) ? 0.0 : 1.0, (mask & 2) ? 0.0 : 1.0,
+                              (mask & 4) ? 0.0 : 1.0};
+      const SymMat3 projector{free[0], free[1], free[2], 0.0, 0.0, 0.0};
+      const double full[3][3] = {{m.xx, m.xy, m.xz}, {m.xy, m.yy, m.yz}, {m.xz, m.yz, m.zz}};
+      const SymMat3 shortcut = detail::constrainedMatrix(projector, m);
+      const double got[3][3] = {{shortcut.xx, shortcut.xy, shortcut.xz},
+                                {shortcut.xy, shortcut.yy, shortcut.yz},
+                                {shortcut.xz, shortcut.yz, shortcut.zz}};
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+          double pmp = 0.0;  // (P M P)_ij, then + I - P in the definition's order
+          for (int k = 0; k < 3; ++k)
+            for (int l = 0; l < 3; ++l) {
+              pmp += (i == k ? free[i] : 0.0) * full[k][l] * (l == j ? free[j] : 0.0);
+            }
+          const double expected = pmp + (i == j) - (i == j ? free[i] : 0.0);
+          EXPECT_EQ(got[i][j], expected) << "mask " << mask << " entry " << i << j;
+        }
+      const Vec3 projected = detail::project(projector, v);
+      EXPECT_EQ(projected.x, free[0] * v.x);
+      EXPECT_EQ(projected.y, free[1] * v.y);
+      EXPECT_EQ(projected.z, free[2] * v.z);
+    }
+  }
+}
+
 // The constrained solution minimises the nodal energy 1/2 V.M V - B.V on the
 // allowed plane: any other allowed velocity has higher energy.
 TEST(NodalSolver, ConstrainedVelocityMinimisesTheNodalEnergy) {
