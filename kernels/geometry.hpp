@@ -128,10 +128,10 @@ KOKKOS_INLINE_FUNCTION void relaxationVolumes(const State& s, Index c,
   bool relaxes[kMaxMaterials];
   double sigma[kMaxMaterials];  // -P^m
   double weight_sum = 0.0;
+  for (int m = 0; m < kMaxMaterials; ++m) relax[m] = 0.0;
   for (int m = 0; m < n_materials; ++m) {
     relaxes[m] =
         s.alpha_ck0(c, m) > 0.0 && s.alpha_ck0(c, m) >= s.alpha_trace && s.w_ck0(c, m) > 0.0;
-    relax[m] = 0.0;
     if (!relaxes[m]) continue;
     weight_sum += s.w_ck0(c, m);
     sigma[m] = -s.p_ck(c, m);

@@ -469,7 +469,7 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
   // step it cut 30-fold. What the cap leaves out goes to D, shared by mass.)
   const double volume_change = dt_stage * volume * trace(gradient);
   double own_ratio[kMaxMaterials];  // each material's volume, end over start of step
-  double relax[kMaxMaterials];
+  double relax[kMaxMaterials] = {};
   if (mixed) relaxationVolumes(s, c, relax);
   for (int k = 0; k < s.n_materials && mixed; ++k) {
     if (!(s.alpha_ck(c, k) > 0.0)) continue;
