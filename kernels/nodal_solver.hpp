@@ -241,8 +241,11 @@ namespace detail {
 // y or z, or two of them) is diagonal, of zeros and ones: P M P keeps the
 // entries of M in the free directions, the same numbers the general product
 // gives (up to the sign of a zero), in a tenth of the operations.
+KOKKOS_INLINE_FUNCTION bool isAxisProjector(const SymMat3& projector) {
+  return projector.xy == 0.0 && projector.yz == 0.0 && projector.xz == 0.0;
+}
 KOKKOS_INLINE_FUNCTION SymMat3 constrainedMatrix(const SymMat3& projector, const SymMat3& m) {
-  if (projector.xy == 0.0 && projector.yz == 0.0 && projector.xz == 0.0) {
+  if (isAxisProjector(projector)) {
     const SymMat3& p = projector;
     return {(p.xx * m.xx) * p.xx + 1.0 - p.xx,
             (p.yy * m.yy) * p.yy + 1.0 - p.yy,
@@ -268,7 +271,7 @@ KOKKOS_INLINE_FUNCTION SymMat3 constrainedMatrix(const SymMat3& projector, const
 
 // P v, with the axis projector's shortcut of constrainedMatrix (same numbers).
 KOKKOS_INLINE_FUNCTION Vec3 project(const SymMat3& projector, const Vec3& v) {
-  if (projector.xy == 0.0 && projector.yz == 0.0 && projector.xz == 0.0) {
+  if (isAxisProjector(projector)) {
     return {projector.xx * v.x, projector.yy * v.y, projector.zz * v.z};
   }
   return projector * v;
