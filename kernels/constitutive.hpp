@@ -5,8 +5,8 @@
 // is L_ij = dV_i/dx_j (row i = velocity component, column j = derivative).
 #pragma once
 
+#include "../data/math.hpp"
 #include "eos.hpp"
-#include "math.hpp"
 
 namespace lagremap {
 

@@ -7,8 +7,8 @@
 // to the most restrictive.
 #pragma once
 
-#include "../src/mesh.hpp"
-#include "../src/state.hpp"
+#include "../data/mesh.hpp"
+#include "../data/state.hpp"
 #include "constitutive.hpp"
 #include "hex.hpp"
 #include "time_step.hpp"

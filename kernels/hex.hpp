@@ -5,7 +5,7 @@
 // the boundary set-up on the host, and the unit tests.
 #pragma once
 
-#include "math.hpp"
+#include "../data/math.hpp"
 
 namespace lagremap::hex {
 

@@ -11,8 +11,8 @@
 // reproducible for any thread count); `Gather::Atomics` scatters instead.
 #pragma once
 
-#include "../src/mesh.hpp"
-#include "../src/state.hpp"
+#include "../data/mesh.hpp"
+#include "../data/state.hpp"
 #include "constitutive.hpp"
 #include "geometry.hpp"
 #include "hex.hpp"

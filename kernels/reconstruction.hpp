@@ -7,7 +7,7 @@
 // and the reconstruction respects the symmetry exactly.
 #pragma once
 
-#include "math.hpp"
+#include "../data/math.hpp"
 
 namespace lagremap {
 

@@ -32,10 +32,10 @@
 // total is conserved to round-off without atomics, deterministically.
 #pragma once
 
-#include "../src/diagnostics.hpp"
-#include "../src/mesh.hpp"
-#include "../src/state.hpp"
+#include "../data/mesh.hpp"
+#include "../data/state.hpp"
 #include "reconstruction.hpp"
+#include "sum_array.hpp"
 #include "swept_face.hpp"
 
 namespace lagremap {

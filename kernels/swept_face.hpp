@@ -13,7 +13,7 @@
 // from its neighbour across the face.
 #pragma once
 
-#include "../src/mesh.hpp"
+#include "../data/mesh.hpp"
 #include "hex.hpp"
 
 namespace lagremap {

@@ -3,7 +3,7 @@
 // the location of a Kokkos::MinLoc so one parallel_reduce returns both.
 #pragma once
 
-#include "math.hpp"
+#include "../data/math.hpp"
 
 namespace lagremap {
 

@@ -2,6 +2,7 @@
 #include <cmath>
 
 #include "../kernels/hex.hpp"
+#include "../src/boundary_keys.hpp"
 #include "../src/diagnostics.hpp"
 #include "../src/materials.hpp"
 #include "../src/problem.hpp"

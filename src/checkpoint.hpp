@@ -9,9 +9,9 @@
 #include <utility>
 #include <vector>
 
+#include "../data/mesh.hpp"
+#include "../data/state.hpp"
 #include "diagnostics.hpp"
-#include "mesh.hpp"
-#include "state.hpp"
 
 namespace lagremap {
 

@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 
 #include "kokkos_session.hpp"
@@ -21,6 +22,42 @@ std::string exactText(double value) {
   char text[32];
   std::snprintf(text, sizeof text, "%.17g", value);
   return text;
+}
+
+// Range checks of numeric options whose message names the bound in a few
+// digits ("must be positive, got 0"): CLI11's own spell out DBL_MAX in full.
+CLI::Validator numberAbove(double bound, bool or_equal) {
+  char bound_text[32];
+  std::snprintf(bound_text, sizeof bound_text, "%g", bound);
+  const std::string rule = bound == 0.0
+                               ? (or_equal ? "non-negative" : "positive")
+                               : std::string(or_equal ? "at least " : "above ") + bound_text;
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double value = std::strtod(text.c_str(), &end);
+        if (text.empty() || end != text.c_str() + text.size())
+          return "'" + text + "' is not a number";
+        const bool inside = or_equal ? value >= bound : value > bound;
+        return inside ? "" : "must be " + rule + ", got " + text;
+      },
+      rule == "positive"       ? "POSITIVE"
+      : rule == "non-negative" ? "NONNEGATIVE"
+                               : "NUMBER");
+}
+
+CLI::Validator numberBetween(double lo, double hi) {
+  char rule[64];
+  std::snprintf(rule, sizeof rule, "between %g and %g", lo, hi);
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double value = std::strtod(text.c_str(), &end);
+        if (text.empty() || end != text.c_str() + text.size())
+          return "'" + text + "' is not a number";
+        return value >= lo && value <= hi ? "" : std::string("must be ") + rule + ", got " + text;
+      },
+      "NUMBER");
 }
 
 int badInput(const std::string& message) {
@@ -49,7 +86,10 @@ void printReport(const RunOptions& options, const RunResult& result) {
 int runCommandLine(int argc, char* argv[]) {
   CLI::App app{
       "lagremap: 3D cell-centred Lagrangian (and Lagrange-Remap) multi-material dynamics.\n"
-      "Kokkos options (--kokkos-threads=N or --kokkos-num-threads=N, ...) are accepted too.",
+      "Kokkos options (--kokkos-threads=N or --kokkos-num-threads=N, ...) are accepted too.\n"
+      "Threads: OMP_NUM_THREADS (or --kokkos-threads). Thread binding is OpenMP's default\n"
+      "unless OMP_PROC_BIND is set; OMP_PROC_BIND=spread OMP_PLACES=threads is fastest\n"
+      "(scripts/run.sh sets them). Kokkos' advice about it is not printed.",
       "lagremap"};
   std::string problem_name, mode = "lagrange", input, output;
   double scale = 1.0, t_end = 0.0, cfl = 0.0;
@@ -62,9 +102,10 @@ int runCommandLine(int argc, char* argv[]) {
   app.add_option("--problem", problem_name, "problem to run (see --list)");
   app.add_option("--mode", mode, "lagrange (pure Lagrangian) or remap (Lagrange-Remap)")
       ->check(CLI::IsMember({"lagrange", "remap"}));
-  app.add_option("--scale", scale, "multiply every cell count by S")->check(CLI::PositiveNumber);
-  app.add_option("--t-end", t_end, "final time [s]")->check(CLI::PositiveNumber);
-  app.add_option("--cfl", cfl, "CFL number")->check(CLI::Range(1e-6, 1.0));
+  app.add_option("--scale", scale, "multiply every cell count by S")
+      ->check(numberAbove(0.0, false));
+  app.add_option("--t-end", t_end, "final time [s]")->check(numberAbove(0.0, false));
+  app.add_option("--cfl", cfl, "CFL number")->check(numberBetween(1e-6, 1.0));
   app.add_option("--order", order, "1 or 2")->check(CLI::IsMember({1, 2}));
   app.add_option("--set", assignments, "set a problem or numerics key: --set key=value")
       ->allow_extra_args(false);
@@ -74,10 +115,10 @@ int runCommandLine(int argc, char* argv[]) {
   app.add_option("--output-times", output_times, "snapshot times, comma separated [s]")
       ->delimiter(',');
   app.add_option("--output-every", output_every, "snapshot every N steps")
-      ->check(CLI::NonNegativeNumber);
+      ->check(numberAbove(0.0, true));
   app.add_option("--checkpoint-every", checkpoint_every,
                  "write <output>/checkpoint.h5 every N steps (and when a run fails)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(numberAbove(0.0, true));
   app.add_option("--restart", restart_file, "continue the run saved in this checkpoint file");
   app.add_flag("--quiet", quiet, "no progress line");
   app.add_flag("--list", list, "list the built-in problems");

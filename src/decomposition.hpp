@@ -14,8 +14,8 @@
 #include <array>
 #include <vector>
 
+#include "../data/mesh.hpp"
 #include "fields.hpp"
-#include "mesh.hpp"
 
 namespace lagremap {
 

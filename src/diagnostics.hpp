@@ -2,26 +2,11 @@
 // the boundaries put in, so drift = change of a total - what came in.
 #pragma once
 
-#include "mesh.hpp"
-#include "state.hpp"
+#include "../data/mesh.hpp"
+#include "../data/state.hpp"
+#include "../kernels/sum_array.hpp"
 
 namespace lagremap {
-
-// Fixed-size sum usable as a Kokkos reduction value on Kokkos 3.x and 4.x.
-template <int N>
-struct SumArray {
-  double v[N];
-  KOKKOS_INLINE_FUNCTION SumArray() {
-    for (int i = 0; i < N; ++i) v[i] = 0.0;
-  }
-  KOKKOS_INLINE_FUNCTION SumArray& operator+=(const SumArray& other) {
-    for (int i = 0; i < N; ++i) v[i] += other.v[i];
-    return *this;
-  }
-  KOKKOS_INLINE_FUNCTION void operator+=(const volatile SumArray& other) volatile {
-    for (int i = 0; i < N; ++i) v[i] += other.v[i];
-  }
-};
 
 struct Totals {
   double mass = 0.0;
@@ -41,10 +26,3 @@ struct BoundaryPower {
 BoundaryPower computeBoundaryPower(const Mesh& mesh, const State& state);
 
 }  // namespace lagremap
-
-namespace Kokkos {
-template <int N>
-struct reduction_identity<lagremap::SumArray<N>> {
-  KOKKOS_FORCEINLINE_FUNCTION static lagremap::SumArray<N> sum() { return lagremap::SumArray<N>(); }
-};
-}  // namespace Kokkos

@@ -1,6 +1,8 @@
 #include "kokkos_session.hpp"
 
-#include "types.hpp"
+#include <cstdlib>
+
+#include "../data/types.hpp"
 
 namespace lagremap {
 
@@ -34,6 +36,11 @@ KokkosSession::KokkosSession(int& argc, char* argv[]) {
       argv[i] = rewritten_.back().data();
     }
   }
+  // Without OMP_PROC_BIND, Kokkos' OpenMP back-end prints four lines of
+  // binding advice before every command; the binding is the user's choice
+  // (--help says which is fastest), so a plain run stays quiet. Other Kokkos
+  // warnings are silenced with it; setting OMP_PROC_BIND brings them back.
+  if (std::getenv("OMP_PROC_BIND") == nullptr) setenv("KOKKOS_DISABLE_WARNINGS", "1", 0);
   Kokkos::initialize(argc, argv);
 }
 

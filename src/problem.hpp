@@ -8,10 +8,12 @@
 #include <utility>
 #include <vector>
 
+#include "../data/mesh.hpp"
+#include "../data/state.hpp"
 #include "input/config.hpp"
-#include "mesh.hpp"
+#include "mesh_setup.hpp"
 #include "parallel.hpp"
-#include "state.hpp"
+#include "state_setup.hpp"
 
 namespace lagremap {
 

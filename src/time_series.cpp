@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "../kernels/math.hpp"
+#include "../data/math.hpp"
 
 namespace lagremap {
 

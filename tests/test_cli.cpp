@@ -5,6 +5,7 @@
 
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <utility>
 
 #include "test_support.hpp"
@@ -39,7 +40,10 @@ TEST(CommandLine, MalformedInputGivesExitCodeTwoAndOneLine) {
       {"--problem ball --mode lagrange --print-config", "use --mode remap"},
       {"--problem sod --mode remap --set remap.beta=3", "remap.beta must be in [1, 2]"},
       {"--problem sod --scale -1", "--scale"},
-      {"--problem sod --scale abc", "--scale"},
+      {"--problem sod --scale abc", "--scale: 'abc' is not a number"},
+      {"--problem sod --scale 0", "--scale: must be positive, got 0"},
+      {"--problem sod --cfl 2", "--cfl: must be between 1e-06 and 1, got 2"},
+      {"--problem sod --output-every -1", "--output-every: must be non-negative, got -1"},
       {"--problem sod --set nokey=1", "unknown key 'nokey'"},
       {"--problem sod --set mesh.nx=abc", "mesh.nx"},
       {"--problem sod --set mesh.nx=0", "mesh"},
@@ -65,6 +69,8 @@ TEST(CommandLine, MalformedInputGivesExitCodeTwoAndOneLine) {
     const auto result = runLagremap(args + (runs_sod ? out : ""));
     EXPECT_EQ(result.exit_code, 2) << bad.args << "\n" << result.output;
     EXPECT_EQ(lineCount(result.error), 1) << bad.args << "\n" << result.error;
+    EXPECT_LT(result.error.size(), 300u) << bad.args << ": a line a user can read\n"
+                                         << result.error;
     EXPECT_NE(result.error.find("lagremap: error:"), std::string::npos) << result.error;
     EXPECT_NE(result.error.find(bad.expected), std::string::npos)
         << bad.args << ": '" << result.error << "' does not mention '" << bad.expected << "'";
@@ -75,6 +81,23 @@ TEST(CommandLine, MalformedInputGivesExitCodeTwoAndOneLine) {
     EXPECT_EQ(lineCount(result.error), 1) << result.error;
     EXPECT_NE(result.error.find(file), std::string::npos) << result.error;
   }
+  std::filesystem::remove_all(dir);
+}
+
+// A first run prints only lagremap's own lines: no Kokkos advice about
+// OMP_PROC_BIND when it is not set (runLagremap sets it, so this shell does not).
+TEST(CommandLine, PlainRunWithoutBindingVariablesIsQuiet) {
+  const std::string dir = testing::scratchDir("cli_quiet");
+  const std::string command = "env -u OMP_PROC_BIND -u OMP_PLACES " + std::string(LAGREMAP_EXE) +
+                              " --problem sod --scale 0.25 --quiet --output " + dir + "/out > " +
+                              dir + "/stdout 2> " + dir + "/stderr";
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  std::ifstream err(dir + "/stderr"), out(dir + "/stdout");
+  const std::string error((std::istreambuf_iterator<char>(err)), std::istreambuf_iterator<char>());
+  const std::string output((std::istreambuf_iterator<char>(out)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(error, "");
+  EXPECT_EQ(output.find("Kokkos"), std::string::npos) << output;
+  EXPECT_EQ(output.rfind("lagremap: sod", 0), 0u) << output;
   std::filesystem::remove_all(dir);
 }
 

@@ -11,9 +11,9 @@
 #include <stdexcept>
 #include <vector>
 
+#include "data/math.hpp"
 #include "kernels/constitutive.hpp"
 #include "kernels/eos.hpp"
-#include "kernels/math.hpp"
 #include "src/materials.hpp"
 
 namespace lagremap {

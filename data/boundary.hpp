@@ -2,9 +2,8 @@
 #pragma once
 
 #include <array>
-#include <string>
 
-#include "../kernels/math.hpp"
+#include "math.hpp"
 
 namespace lagremap {
 
@@ -18,10 +17,5 @@ struct BoundaryCondition {
 
 constexpr int kNumSides = 6;  // x-, x+, y-, y+, z-, z+ of the block
 using SideBoundaries = std::array<BoundaryCondition, kNumSides>;
-
-const char* sideName(int side);  // "xmin", "xmax", ...
-// Parses "free" | "wall" | "symmetry" | "fixed" | "traction"; throws ConfigError otherwise.
-BoundaryKind parseBoundaryKind(const std::string& key, const std::string& text);
-const char* boundaryKindName(BoundaryKind kind);
 
 }  // namespace lagremap

@@ -1,4 +1,4 @@
-#include "boundary.hpp"
+#include "boundary_keys.hpp"
 
 #include "input/config.hpp"
 

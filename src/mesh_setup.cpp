@@ -1,4 +1,4 @@
-#include "mesh.hpp"
+#include "mesh_setup.hpp"
 
 #include <random>
 #include <stdexcept>

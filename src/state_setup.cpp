@@ -1,4 +1,4 @@
-#include "state.hpp"
+#include "state_setup.hpp"
 
 #include "fields.hpp"
 

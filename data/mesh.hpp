@@ -1,24 +1,11 @@
-// Unstructured hexahedral mesh in flat SoA Views (DESIGN §6), generated from a
-// block. Connectivity is built once on the host and mirrored to the device.
+// Unstructured hexahedral mesh in flat SoA Views (DESIGN §6): what the kernels
+// read. Built once on the host and mirrored to the device (src/mesh_setup.hpp).
 #pragma once
-
-#include <functional>
-#include <string>
 
 #include "boundary.hpp"
 #include "types.hpp"
 
 namespace lagremap {
-
-struct BlockSpec {
-  int nx = 1, ny = 1, nz = 1;
-  Vec3 lo{0.0, 0.0, 0.0}, hi{1.0, 1.0, 1.0};
-  // Smooth map applied to the block's node positions (e.g. a polar shell); identity if empty.
-  std::function<Vec3(const Vec3&)> mapping;
-  // Random displacement of interior nodes, as a fraction of the local cell size (tests).
-  double perturbation = 0.0;
-  unsigned seed = 12345;
-};
 
 struct Mesh {
   Index n_nodes = 0, n_cells = 0;
@@ -57,18 +44,5 @@ struct Mesh {
   DeviceView<Real[kNumSides][6]> side_traction;  // sigma^b of each side (Sym6 order)
   DeviceView<int[kNumSides]> side_kind;          // BoundaryKind of each side
 };
-
-// Builds the mesh of a block with the side boundary conditions (all of it
-// owned by the calling rank).
-Mesh buildBlockMesh(const BlockSpec& spec, const SideBoundaries& boundaries);
-// Marks every cell and node of the mesh owned, with global id = local id.
-void ownEverything(Mesh& mesh);
-
-// Host copies of coordinates and connectivity, for output and checks.
-struct HostMesh {
-  Vec3View::HostMirror x_n;
-  CellNodesView::HostMirror cell_nodes;
-};
-HostMesh copyToHost(const Mesh& mesh);
 
 }  // namespace lagremap
