@@ -81,6 +81,122 @@ void printReport(const RunOptions& options, const RunResult& result) {
               executionSpaceText().c_str());
 }
 
+// What the command line says, before it is resolved against a problem.
+struct CommandLine {
+  std::string problem, mode = "lagrange", input, output, restart_file;
+  double scale = 1.0, t_end = 0.0, cfl = 0.0;
+  int order = 0;
+  long output_every = 0, checkpoint_every = 0;
+  std::vector<std::string> assignments;
+  std::vector<double> output_times;
+  bool quiet = false, list = false, print_config = false;
+};
+
+void addOptions(CLI::App& app, CommandLine& line) {
+  app.add_option("--problem", line.problem, "problem to run (see --list)");
+  app.add_option("--mode", line.mode, "lagrange (pure Lagrangian) or remap (Lagrange-Remap)")
+      ->check(CLI::IsMember({"lagrange", "remap"}));
+  app.add_option("--scale", line.scale, "multiply every cell count by S")
+      ->check(numberAbove(0.0, false));
+  app.add_option("--t-end", line.t_end, "final time [s]")->check(numberAbove(0.0, false));
+  app.add_option("--cfl", line.cfl, "CFL number")->check(numberBetween(1e-6, 1.0));
+  app.add_option("--order", line.order, "1 or 2")->check(CLI::IsMember({1, 2}));
+  app.add_option("--set", line.assignments, "set a problem or numerics key: --set key=value")
+      ->allow_extra_args(false);
+  app.add_option("--input", line.input, "TOML input deck (tables become dotted keys)")
+      ->check(CLI::ExistingFile);
+  app.add_option("--output", line.output, "output directory (default out/<problem>)");
+  app.add_option("--output-times", line.output_times, "snapshot times, comma separated [s]")
+      ->delimiter(',');
+  app.add_option("--output-every", line.output_every, "snapshot every N steps")
+      ->check(numberAbove(0.0, true));
+  app.add_option("--checkpoint-every", line.checkpoint_every,
+                 "write <output>/checkpoint.h5 every N steps (and when a run fails)")
+      ->check(numberAbove(0.0, true));
+  app.add_option("--restart", line.restart_file, "continue the run saved in this checkpoint file");
+  app.add_flag("--quiet", line.quiet, "no progress line");
+  app.add_flag("--list", line.list, "list the built-in problems");
+  app.add_flag("--print-config", line.print_config,
+               "print every key of the problem with its value, unit and help");
+}
+
+// The problem and mode a deck names where the command line does not; throws
+// ConfigError for a deck that names neither problem nor a known mode.
+void takeProblemAndModeFromDeck(CommandLine& line, bool mode_given) {
+  if (line.input.empty()) return;
+  if (line.problem.empty()) {
+    Config::peekDeck(line.input, &line.problem, nullptr);
+    if (line.problem.empty()) {
+      // A deck with a syntax error says so (with its line) rather than "no problem".
+      Config().loadDeck(line.input, nullptr, nullptr);
+      throw ConfigError("input deck '" + line.input +
+                        "' names no problem and --problem is not given");
+    }
+  }
+  if (!mode_given) {
+    std::string deck_mode;
+    Config::peekDeck(line.input, nullptr, &deck_mode);
+    if (!deck_mode.empty()) line.mode = deck_mode;
+    if (line.mode != "lagrange" && line.mode != "remap") {
+      throw ConfigError("input deck '" + line.input + "': mode '" + line.mode +
+                        "' is not one of lagrange|remap");
+    }
+  }
+}
+
+// Every key of the run: the problem's defaults, then the deck, then --set,
+// then the options that stand for keys (--t-end, --cfl, --order, --scale).
+Config resolveConfig(const Problem& problem, const CommandLine& line, const CLI::App& app) {
+  Config config = declareConfig(problem, line.mode);
+  if (!line.input.empty()) {
+    std::string deck_problem, deck_mode;
+    config.loadDeck(line.input, &deck_problem, &deck_mode);
+    if (!deck_problem.empty() && deck_problem != line.problem) {
+      throw ConfigError("input deck '" + line.input + "' is for problem '" + deck_problem +
+                        "', not '" + line.problem + "'");
+    }
+  }
+  for (const auto& assignment : line.assignments) config.setAssignment(assignment);
+  if (app.count("--t-end")) config.set("t_end", exactText(line.t_end));
+  if (app.count("--cfl")) config.set("numerics.cfl", exactText(line.cfl));
+  if (app.count("--order")) config.set("numerics.order", std::to_string(line.order));
+  config.scaleCellCounts(line.scale);
+  return config;
+}
+
+RunOptions runOptions(const Problem& problem, CommandLine& line, Config config, bool times_given) {
+  RunOptions options;
+  options.problem = problem.name;
+  options.mode = line.mode;
+  options.config = std::move(config);
+  options.output_dir = line.output.empty() ? "out/" + options.problem : line.output;
+  options.output_times = line.output_times;
+  if (!times_given) {
+    for (double t_out : problem.default_output_times) {
+      if (t_out <= options.config.real("t_end")) options.output_times.push_back(t_out);
+    }
+  }
+  options.output_every = line.output_every;
+  options.quiet = line.quiet;
+  options.checkpoint_every = line.checkpoint_every;
+  options.restart_file = line.restart_file;
+  return options;
+}
+
+// Runs and reports (rank 0); every rank returns the same exit code.
+int runAndReport(const RunOptions& options) {
+  const RunResult result = runProblem(options);
+  const int code = result.failed ? kExitRunFailed : result.checksPass() ? 0 : kExitChecksFailed;
+  if (!parallel::isRoot()) return code;
+  if (result.failed) {
+    std::fprintf(stderr, "lagremap: run failed: %s; last good state (t = %.6g) written to %s\n",
+                 result.failure.c_str(), result.time, options.output_dir.c_str());
+    return code;
+  }
+  printReport(options, result);
+  return code;
+}
+
 }  // namespace
 
 int runCommandLine(int argc, char* argv[]) {
@@ -91,39 +207,8 @@ int runCommandLine(int argc, char* argv[]) {
       "unless OMP_PROC_BIND is set; OMP_PROC_BIND=spread OMP_PLACES=threads is fastest\n"
       "(scripts/run.sh sets them). Kokkos' advice about it is not printed.",
       "lagremap"};
-  std::string problem_name, mode = "lagrange", input, output;
-  double scale = 1.0, t_end = 0.0, cfl = 0.0;
-  int order = 0;
-  long output_every = 0, checkpoint_every = 0;
-  std::string restart_file;
-  std::vector<std::string> assignments;
-  std::vector<double> output_times;
-  bool quiet = false, list = false, print_config = false;
-  app.add_option("--problem", problem_name, "problem to run (see --list)");
-  app.add_option("--mode", mode, "lagrange (pure Lagrangian) or remap (Lagrange-Remap)")
-      ->check(CLI::IsMember({"lagrange", "remap"}));
-  app.add_option("--scale", scale, "multiply every cell count by S")
-      ->check(numberAbove(0.0, false));
-  app.add_option("--t-end", t_end, "final time [s]")->check(numberAbove(0.0, false));
-  app.add_option("--cfl", cfl, "CFL number")->check(numberBetween(1e-6, 1.0));
-  app.add_option("--order", order, "1 or 2")->check(CLI::IsMember({1, 2}));
-  app.add_option("--set", assignments, "set a problem or numerics key: --set key=value")
-      ->allow_extra_args(false);
-  app.add_option("--input", input, "TOML input deck (tables become dotted keys)")
-      ->check(CLI::ExistingFile);
-  app.add_option("--output", output, "output directory (default out/<problem>)");
-  app.add_option("--output-times", output_times, "snapshot times, comma separated [s]")
-      ->delimiter(',');
-  app.add_option("--output-every", output_every, "snapshot every N steps")
-      ->check(numberAbove(0.0, true));
-  app.add_option("--checkpoint-every", checkpoint_every,
-                 "write <output>/checkpoint.h5 every N steps (and when a run fails)")
-      ->check(numberAbove(0.0, true));
-  app.add_option("--restart", restart_file, "continue the run saved in this checkpoint file");
-  app.add_flag("--quiet", quiet, "no progress line");
-  app.add_flag("--list", list, "list the built-in problems");
-  app.add_flag("--print-config", print_config,
-               "print every key of the problem with its value, unit and help");
+  CommandLine line;
+  addOptions(app, line);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& help) {
@@ -134,82 +219,25 @@ int runCommandLine(int argc, char* argv[]) {
       if (ch == '\n') ch = ' ';
     return badInput(message);
   }
-
-  if (list) {
+  if (line.list) {
     for (const auto& problem : problemRegistry()) {
       if (!parallel::isRoot()) break;
       std::printf("%-10s %s\n", problem.name, problem.description);
     }
     return 0;
   }
-
-  RunOptions options;
   try {
-    // The deck may name the problem and mode; the command line wins.
-    std::string deck_problem, deck_mode;
-    if (!input.empty() && problem_name.empty()) {
-      Config::peekDeck(input, &problem_name, nullptr);
-      if (problem_name.empty()) {
-        // A deck with a syntax error says so (with its line) rather than "no problem".
-        Config().loadDeck(input, nullptr, nullptr);
-        return badInput("input deck '" + input + "' names no problem and --problem is not given");
-      }
-    }
-    if (problem_name.empty()) return badInput("--problem is required (see --list)");
-    const Problem& problem = findProblem(problem_name);
-    options.problem = problem.name;
-    if (!input.empty() && app.count("--mode") == 0) {
-      Config::peekDeck(input, nullptr, &deck_mode);
-      if (!deck_mode.empty()) mode = deck_mode;
-      if (mode != "lagrange" && mode != "remap") {
-        return badInput("input deck '" + input + "': mode '" + mode +
-                        "' is not one of lagrange|remap");
-      }
-    }
-    options.config = declareConfig(problem, mode);
-    if (!input.empty()) {
-      options.config.loadDeck(input, &deck_problem, &deck_mode);
-      if (!deck_problem.empty() && deck_problem != problem_name) {
-        return badInput("input deck '" + input + "' is for problem '" + deck_problem + "', not '" +
-                        problem_name + "'");
-      }
-      if (!deck_mode.empty() && app.count("--mode") == 0) mode = deck_mode;
-    }
-    for (const auto& assignment : assignments) options.config.setAssignment(assignment);
-    if (app.count("--t-end")) options.config.set("t_end", exactText(t_end));
-    if (app.count("--cfl")) options.config.set("numerics.cfl", exactText(cfl));
-    if (app.count("--order")) options.config.set("numerics.order", std::to_string(order));
-    options.config.scaleCellCounts(scale);
-    if (print_config) {
+    takeProblemAndModeFromDeck(line, app.count("--mode") > 0);
+    if (line.problem.empty()) return badInput("--problem is required (see --list)");
+    const Problem& problem = findProblem(line.problem);
+    Config config = resolveConfig(problem, line, app);
+    if (line.print_config) {
       if (!parallel::isRoot()) return 0;
       std::printf("# problem %s: every settable key (--set key=value, or in a TOML deck)\n%s",
-                  problem.name, options.config.printable().c_str());
+                  problem.name, config.printable().c_str());
       return 0;
     }
-    options.mode = mode;
-    options.output_dir = output.empty() ? "out/" + options.problem : output;
-    options.output_times = output_times;
-    if (app.count("--output-times") == 0) {
-      for (double t_out : problem.default_output_times) {
-        if (t_out <= options.config.real("t_end")) options.output_times.push_back(t_out);
-      }
-    }
-    options.output_every = output_every;
-    options.quiet = quiet;
-    options.checkpoint_every = checkpoint_every;
-    options.restart_file = restart_file;
-
-    const RunResult result = runProblem(options);
-    if (!parallel::isRoot()) {  // rank 0 reports; every rank returns the same code
-      return result.failed ? kExitRunFailed : result.checksPass() ? 0 : kExitChecksFailed;
-    }
-    if (result.failed) {
-      std::fprintf(stderr, "lagremap: run failed: %s; last good state (t = %.6g) written to %s\n",
-                   result.failure.c_str(), result.time, options.output_dir.c_str());
-      return kExitRunFailed;
-    }
-    printReport(options, result);
-    return result.checksPass() ? 0 : kExitChecksFailed;
+    return runAndReport(runOptions(problem, line, std::move(config), app.count("--output-times")));
   } catch (const ConfigError& error) {
     return badInput(error.what());
   } catch (const std::exception& error) {

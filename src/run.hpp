@@ -1,5 +1,5 @@
-// The run driver: builds a problem from its configuration, runs the time loop,
-// and writes summary.json, history.csv, snapshots and the problem's CSVs.
+// A run: set-up (src/setup.hpp), the time loop (src/simulation.hpp) with its
+// outputs (src/outputs.hpp), the problem's checks and summary.json.
 // Everything main() does, callable from tests.
 #pragma once
 
@@ -8,6 +8,7 @@
 
 #include "input/config.hpp"
 #include "problem.hpp"
+#include "setup.hpp"
 
 namespace lagremap {
 
@@ -24,9 +25,6 @@ struct RunOptions {
   std::string restart_file;          // continue the run of this checkpoint
 };
 
-// Every key a run has: the common numerics keys plus the problem's.
-Config declareConfig(const Problem& problem, const std::string& mode = "lagrange");
-
 struct RunResult {
   long steps = 0;
   double time = 0.0;
@@ -41,15 +39,6 @@ struct RunResult {
   FinalFields fields;  // host copies of the final (or last good) state
   bool checksPass() const;
 };
-
-struct Numerics;
-// The numerics.* keys (and t_end) as the time loop uses them; throws
-// ConfigError for impossible values.
-Numerics readNumerics(const Config& config);
-
-// Uploads a problem's initial cells into an allocated state: m = rho v (v from
-// the same geometry the kernels use), E = e + |V|^2 / 2, and the material table.
-void initializeState(const ProblemSetup& setup, State& state);
 
 // Runs a problem. Bad configuration throws ConfigError (exit code 2); a failure
 // mid-way is returned in RunResult::failed after the last good state is written.

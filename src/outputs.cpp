@@ -1,0 +1,246 @@
+#include "outputs.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <iomanip>
+
+#include "decomposition.hpp"
+#include "parallel.hpp"
+
+namespace lagremap {
+
+FinalFields copyFields(const Mesh& mesh, const Mesh* global, const State& state, double time) {
+  FinalFields fields;
+  fields.time = time;
+  fields.nx = mesh.nx;
+  fields.ny = mesh.ny;
+  fields.nz = mesh.nz;
+  auto cells = [&](const auto& view) {
+    auto host = Kokkos::create_mirror_view_and_copy(HostSpace(), view);
+    return global ? gatherGlobal(host, mesh, true) : host;
+  };
+  fields.mesh = copyToHost(mesh);
+  if (global) {
+    fields.mesh.x_n = gatherGlobal(fields.mesh.x_n, mesh, false);
+    fields.mesh.cell_nodes = Kokkos::create_mirror_view_and_copy(HostSpace(), global->cell_nodes);
+  }
+  fields.rho = cells(state.rho_c);
+  fields.p = cells(state.p_c);
+  fields.e = cells(state.e_c);
+  fields.vol = cells(state.vol_c);
+  fields.v = cells(state.v_c);
+  fields.x_c = cells(state.x_c);
+  fields.S = cells(state.S_c);
+  fields.alpha = cells(state.alpha_ck);
+  fields.m_k = cells(state.m_ck);
+  fields.e_k = cells(state.e_ck);
+  fields.p_k = cells(state.p_ck);
+  return fields;
+}
+
+namespace {
+
+// Writes a snapshot of this rank's owned cells and nodes, numbered globally
+// (all of them on one rank); `fields` are the rank's host copies (copyFields
+// without gathering). Collective over the ranks.
+void writeSnapshot(io::SnapshotSeries& series, const FinalFields& fields, const Mesh& mesh) {
+  const auto cell_owned = Kokkos::create_mirror_view_and_copy(HostSpace(), mesh.cell_owned);
+  const auto node_owned = Kokkos::create_mirror_view_and_copy(HostSpace(), mesh.node_owned);
+  std::vector<Index> cells, nodes;  // local ids of the owned rows
+  std::vector<std::int64_t> cell_rows, node_rows;
+  for (Index c = 0; c < mesh.n_cells; ++c) {
+    if (!cell_owned(c)) continue;
+    cells.push_back(c);
+    cell_rows.push_back(mesh.cell_global(c));
+  }
+  for (Index n = 0; n < mesh.n_nodes; ++n) {
+    if (!node_owned(n)) continue;
+    nodes.push_back(n);
+    node_rows.push_back(mesh.node_global(n));
+  }
+  const std::size_t n_cells = cells.size(), n_nodes = nodes.size();
+  std::vector<double> xyz(3 * n_nodes), velocity(3 * n_cells), deviator(6 * n_cells);
+  std::vector<std::int64_t> connectivity(8 * n_cells);
+  for (std::size_t i = 0; i < n_nodes; ++i)
+    for (int d = 0; d < 3; ++d) xyz[3 * i + d] = fields.mesh.x_n(nodes[i], d);
+  // One scalar per owned cell.
+  auto scalars = [&](auto value) {
+    std::vector<double> column(n_cells);
+    for (std::size_t i = 0; i < n_cells; ++i) column[i] = value(cells[i]);
+    return column;
+  };
+  for (std::size_t i = 0; i < n_cells; ++i) {
+    const Index c = cells[i];
+    for (int p = 0; p < 8; ++p)
+      connectivity[8 * i + p] = mesh.node_global(fields.mesh.cell_nodes(c, p));
+    for (int d = 0; d < 3; ++d) velocity[3 * i + d] = fields.v(c, d);
+    for (int k = 0; k < 6; ++k) deviator[6 * i + k] = fields.S(c, k);
+  }
+  std::vector<std::vector<double>> columns = {scalars([&](Index c) { return fields.rho(c); }),
+                                              scalars([&](Index c) { return fields.p(c); }),
+                                              scalars([&](Index c) { return fields.e(c); }),
+                                              scalars([&](Index c) { return fields.vol(c); })};
+  std::vector<io::CellField> cell_fields = {
+      {"density", columns[0].data(), 1},         {"pressure", columns[1].data(), 1},
+      {"internal_energy", columns[2].data(), 1}, {"volume", columns[3].data(), 1},
+      {"velocity", velocity.data(), 3},          {"deviatoric_stress", deviator.data(), 6}};
+  // Multi-material problems: each material's volume fraction, density
+  // m^k / (alpha^k v), specific internal energy and pressure (0 where absent).
+  const int n_materials = int(fields.alpha.extent(1));
+  columns.reserve(columns.size() + 4 * std::size_t(n_materials));
+  for (int k = 0; n_materials > 1 && k < n_materials; ++k) {
+    auto present = [&](Index c) { return fields.alpha(c, k) > 0.0; };
+    columns.push_back(scalars([&](Index c) { return fields.alpha(c, k); }));
+    columns.push_back(scalars([&](Index c) {
+      return present(c) ? fields.m_k(c, k) / (fields.alpha(c, k) * fields.vol(c)) : 0.0;
+    }));
+    columns.push_back(scalars([&](Index c) { return present(c) ? fields.e_k(c, k) : 0.0; }));
+    columns.push_back(scalars([&](Index c) { return present(c) ? fields.p_k(c, k) : 0.0; }));
+    const std::string suffix = "_" + std::to_string(k);
+    const std::size_t first = columns.size() - 4;
+    cell_fields.push_back({"volume_fraction" + suffix, columns[first].data(), 1});
+    cell_fields.push_back({"material_density" + suffix, columns[first + 1].data(), 1});
+    cell_fields.push_back({"material_internal_energy" + suffix, columns[first + 2].data(), 1});
+    cell_fields.push_back({"material_pressure" + suffix, columns[first + 3].data(), 1});
+  }
+  const io::SnapshotMesh snapshot_mesh{
+      std::int64_t(n_nodes), xyz.data(),       std::int64_t(n_cells), connectivity.data(),
+      node_rows.data(),      cell_rows.data(), mesh.n_global_nodes,   mesh.n_global_cells};
+  series.write(fields.time, snapshot_mesh, cell_fields);
+}
+
+// The header and the lines of steps <= last_step of an existing history.csv
+// ("" if there is none): what a restart from step last_step keeps.
+std::string historyUpTo(const std::string& path, long last_step) {
+  std::ifstream in(path);
+  std::string line, kept;
+  if (!in || !std::getline(in, line)) return "";
+  kept = line + '\n';
+  while (std::getline(in, line)) {
+    if (std::atol(line.c_str()) > last_step) break;
+    kept += line + '\n';
+  }
+  return kept;
+}
+
+std::string formatSeconds(double seconds) {
+  char text[32];
+  if (seconds < 120) {
+    std::snprintf(text, sizeof text, "%.0fs", seconds);
+  } else {
+    std::snprintf(text, sizeof text, "%.0fm%02.0fs", std::floor(seconds / 60),
+                  std::fmod(seconds, 60.0));
+  }
+  return text;
+}
+
+}  // namespace
+
+HistoryFile::HistoryFile(const RunOptions& options, const Simulation& simulation) {
+  if (!options.write_files) return;
+  const std::string& dir = options.output_dir;
+  std::string error;  // rank 0's, reported by every rank
+  if (parallel::isRoot()) {
+    std::error_code code;
+    std::filesystem::create_directories(dir, code);
+    if (code) {
+      error = "cannot create output directory '" + dir + "': " + code.message();
+    } else {
+      const std::string kept =
+          simulation.restarted() ? historyUpTo(dir + "/history.csv", simulation.step()) : "";
+      file_.open(dir + "/history.csv");
+      if (!file_) error = "cannot write '" + dir + "/history.csv'";
+      if (kept.empty()) {
+        file_ << "step,t,dt,dt_reason,mass,momentum_x,momentum_y,momentum_z,kinetic_energy,"
+                 "internal_energy,total_energy\n";
+      }
+      file_ << kept << std::setprecision(15);
+    }
+  }
+  error = parallel::firstMessage(error);
+  if (!error.empty()) throw ConfigError(error);
+}
+
+void HistoryFile::start(const Simulation& simulation) {
+  if (!simulation.restarted()) writeLine(0, 0.0, 0.0, "initial", simulation.totals());
+}
+
+void HistoryFile::afterStep(const Simulation& simulation, const TimeStepChoice& choice) {
+  writeLine(simulation.step(), simulation.time(), choice.dt, choice.reason, simulation.totals());
+}
+
+void HistoryFile::writeLine(long step, double t, double dt, const char* reason,
+                            const Totals& totals) {
+  if (!file_.is_open()) return;
+  file_ << step << ',' << t << ',' << dt << ',' << reason << ',' << totals.mass << ','
+        << totals.momentum.x << ',' << totals.momentum.y << ',' << totals.momentum.z << ','
+        << totals.kinetic << ',' << totals.internal << ',' << totals.total() << '\n';
+}
+
+SnapshotOutput::SnapshotOutput(const RunOptions& options, const Simulation& simulation)
+    : series_(options.output_dir, "fields"), every_(options.output_every) {
+  series_.resume(simulation.loopState().snapshot_times);
+}
+
+void SnapshotOutput::start(const Simulation& simulation) {
+  if (!simulation.restarted()) write(simulation);
+}
+
+void SnapshotOutput::afterStep(const Simulation& simulation, const TimeStepChoice& choice) {
+  const bool periodic =
+      every_ > 0 && simulation.step() % every_ == 0 && simulation.time() < simulation.tEnd();
+  if (choice.lands_on_output() || periodic) write(simulation);
+}
+
+void SnapshotOutput::finish(const Simulation& simulation) {
+  write(simulation);
+}
+
+void SnapshotOutput::write(const Simulation& simulation) {
+  auto scope = simulation.timers().scope(Phase::Output);
+  const Mesh& mesh = simulation.mesh();
+  writeSnapshot(series_, copyFields(mesh, nullptr, simulation.state(), simulation.time()), mesh);
+}
+
+CheckpointOutput::CheckpointOutput(const RunOptions& options, const SnapshotOutput& snapshots)
+    : path_(options.output_dir + "/checkpoint.h5"),
+      every_(options.checkpoint_every),
+      snapshots_(snapshots) {}
+
+void CheckpointOutput::afterStep(const Simulation& simulation, const TimeStepChoice&) {
+  if (every_ > 0 && simulation.step() % every_ == 0 && simulation.time() < simulation.tEnd()) {
+    write(simulation);
+  }
+}
+
+void CheckpointOutput::finish(const Simulation& simulation) {
+  if (simulation.failed()) write(simulation);
+}
+
+void CheckpointOutput::write(const Simulation& simulation) {
+  auto scope = simulation.timers().scope(Phase::Output);
+  LoopState now = simulation.loopState();
+  now.snapshot_times = snapshots_.times();
+  writeCheckpoint(path_, simulation.mesh(), simulation.state(), now);
+}
+
+void ProgressLine::start(const Simulation&) {
+  start_ = last_ = std::chrono::steady_clock::now();
+}
+
+void ProgressLine::afterStep(const Simulation& simulation, const TimeStepChoice& choice) {
+  if (!parallel::isRoot()) return;
+  const auto now = std::chrono::steady_clock::now();
+  if (std::chrono::duration<double>(now - last_).count() <= 3.0) return;
+  last_ = now;
+  const double seconds = std::chrono::duration<double>(now - start_).count();
+  const double t = simulation.time(), t_end = simulation.tEnd();
+  const double done = t - simulation.startState().time;
+  std::fprintf(stderr, "[lagremap] %5.1f%%  step %ld  t %.6g  dt %.3g (%s)  ETA %s\n",
+               100.0 * t / t_end, simulation.step(), t, choice.dt, choice.reason,
+               formatSeconds(seconds * (t_end - t) / done).c_str());
+}
+
+}  // namespace lagremap

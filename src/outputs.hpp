@@ -1,0 +1,78 @@
+// Outputs of a run as observers of the time loop (src/simulation.hpp):
+// history.csv, HDF5 + XDMF snapshots, checkpoints and the progress line. Rank
+// 0 writes the text files; snapshots and checkpoints are collective.
+#pragma once
+
+#include <chrono>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "io/snapshot_writer.hpp"
+#include "simulation.hpp"
+
+namespace lagremap {
+
+// Host copies of the fields of the whole mesh: a decomposed run (`global`:
+// the generated mesh, for its connectivity) gathers every rank's owned rows.
+FinalFields copyFields(const Mesh& mesh, const Mesh* global, const State& state, double time);
+
+// history.csv: the totals of every step, after the initial state's line. A
+// restart keeps the lines of the steps it does not redo. Creates the output
+// directory; a directory or file that cannot be written is ConfigError
+// (collective: every rank throws rank 0's message).
+class HistoryFile : public LoopObserver {
+ public:
+  HistoryFile(const RunOptions& options, const Simulation& simulation);
+  void start(const Simulation& simulation) override;
+  void afterStep(const Simulation& simulation, const TimeStepChoice& choice) override;
+
+ private:
+  void writeLine(long step, double t, double dt, const char* reason, const Totals& totals);
+  std::ofstream file_;
+};
+
+// Snapshots: the initial state, each requested output time, every
+// `--output-every` steps, and the final (or last good) state.
+class SnapshotOutput : public LoopObserver {
+ public:
+  SnapshotOutput(const RunOptions& options, const Simulation& simulation);
+  void start(const Simulation& simulation) override;
+  void afterStep(const Simulation& simulation, const TimeStepChoice& choice) override;
+  void finish(const Simulation& simulation) override;
+  std::vector<double> times() const { return series_.times(); }
+
+ private:
+  void write(const Simulation& simulation);
+  io::SnapshotSeries series_;
+  long every_ = 0;
+};
+
+// checkpoint.h5 every `--checkpoint-every` steps and when a run fails (its
+// last good state, to restart from); replaced atomically.
+class CheckpointOutput : public LoopObserver {
+ public:
+  CheckpointOutput(const RunOptions& options, const SnapshotOutput& snapshots);
+  void afterStep(const Simulation& simulation, const TimeStepChoice& choice) override;
+  void finish(const Simulation& simulation) override;
+
+ private:
+  void write(const Simulation& simulation);
+  std::string path_;
+  long every_ = 0;
+  const SnapshotOutput& snapshots_;
+};
+
+// A progress line on stderr at most every 3 s (rank 0): percentage, step,
+// time, dt and its reason, and the time left.
+class ProgressLine : public LoopObserver {
+ public:
+  void start(const Simulation& simulation) override;
+  void afterStep(const Simulation& simulation, const TimeStepChoice& choice) override;
+
+ private:
+  std::chrono::steady_clock::time_point start_, last_;
+};
+
+}  // namespace lagremap

@@ -1,0 +1,190 @@
+#include "simulation.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+
+#include "diagnostics.hpp"
+#include "parallel.hpp"
+#include "setup.hpp"
+
+namespace lagremap {
+
+bool TimeStepChoice::lands_on_output() const {
+  return std::strcmp(reason, "output") == 0;
+}
+bool TimeStepChoice::lands_on_end() const {
+  return std::strcmp(reason, "end") == 0;
+}
+
+namespace {
+
+const char* limitReason(const StepLimit& limit) {
+  return limit.loc % kLimitCodes == kLimitVolume ? "volume" : "cfl";
+}
+
+}  // namespace
+
+Simulation::Simulation(const RunOptions& options, const Problem& problem)
+    : options_(options),
+      problem_(problem),
+      numerics_(readNumerics(options.config)),
+      t_end_(options.config.real("t_end")) {
+  const Config& config = options.config;
+  checkMemoryFits(config);
+  setup_ = setUpProblem(problem, config, options.problem);
+  // decomposition (DESIGN §6): this rank's block of cells and its ghosts
+  if (parallel::size() > 1) halo_ = keepSubdomain(setup_, global_mesh_, options.problem);
+  Mesh& mesh = setup_.mesh;
+  state_ = allocateState(mesh, numerics_.gather == Gather::Atomics);
+  collectively([&] { initializeState(setup_, state_); });
+
+  lagrange_ = std::make_unique<LagrangeStep>(mesh, state_, numerics_, timers_, halo_.get());
+  limit_ = lagrange_->computeGeometry();
+  if (limit_.val < 0.0) {
+    throw ConfigError("initial state is invalid: " + describeInvalidCell(limit_, 0, "set-up"));
+  }
+  lagrange_->saveStartOfStep();
+  if (config.remapMode()) {
+    const RemapControls controls = readRemapControls(config, state_);
+    remap_ = makeRemapStep(mesh, state_, controls, timers_, halo_.get(), options.problem);
+    lagrange_->remapFollowsEveryStep();
+  }
+
+  // restart (DESIGN §6): the evolved state and the loop's counters of a
+  // checkpoint; the derived fields follow from the same geometry kernel.
+  loop_.problem = options.problem;
+  loop_.mode = options.mode;
+  restarted_ = !options.restart_file.empty();
+  if (restarted_) {
+    collectively([&] {
+      loop_ = readCheckpoint(options.restart_file, mesh, state_, options.problem, options.mode);
+    });
+    if (!(loop_.time < t_end_)) {
+      throw ConfigError("checkpoint '" + options.restart_file +
+                        "' is at t = " + std::to_string(loop_.time) + ", not before t_end");
+    }
+    limit_ = lagrange_->computeGeometry();
+    if (limit_.val < 0.0) {
+      throw ConfigError("checkpoint '" + options.restart_file + "' holds an invalid state: " +
+                        describeInvalidCell(limit_, loop_.step, "restart"));
+    }
+    lagrange_->saveStartOfStep();
+  } else {
+    if (problem.probe) loop_.probe.emplace_back(0.0, problem.probe(mesh, state_));
+    loop_.initial = computeTotals(mesh, state_);
+  }
+  totals_ = loop_.initial;
+  start_ = loop_;
+  for (double t_out : options.output_times) {
+    if (t_out > loop_.time) pending_outputs_.push_back(t_out);
+  }
+  std::sort(pending_outputs_.begin(), pending_outputs_.end());
+}
+
+void Simulation::run() {
+  for (LoopObserver* observer : observers_) observer->start(*this);
+  const auto wall_start = std::chrono::steady_clock::now();
+  while (loop_.time < t_end_) {
+    const TimeStepChoice choice = chooseTimeStep();
+    failure_ = stopReason(choice);
+    if (failed()) break;
+    try {
+      advance(choice);
+    } catch (const RunFailure& failure) {
+      lagrange_->restoreStartOfStep();
+      failure_ = failure.what();
+      break;
+    }
+    for (LoopObserver* observer : observers_) observer->afterStep(*this, choice);
+  }
+  wall_seconds_ =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  // in the reverse order (a checkpoint of a failed run lists the snapshots
+  // before the final one, which a restart then rewrites)
+  for (auto it = observers_.rbegin(); it != observers_.rend(); ++it) (*it)->finish(*this);
+}
+
+TimeStepChoice Simulation::chooseTimeStep() const {
+  TimeStepChoice choice{limit_.val, limitReason(limit_)};
+  if (loop_.step == 0) {
+    choice = {choice.dt * numerics_.dt_initial_factor, "initial"};
+  } else if (numerics_.dt_growth * loop_.dt_prev < choice.dt) {
+    choice = {numerics_.dt_growth * loop_.dt_prev, "growth"};
+  }
+  if (!pending_outputs_.empty() && loop_.time + choice.dt >= pending_outputs_.front()) {
+    choice = {pending_outputs_.front() - loop_.time, "output"};
+  }
+  if (loop_.time + choice.dt >= t_end_) choice = {t_end_ - loop_.time, "end"};
+  return choice;
+}
+
+std::string Simulation::stopReason(const TimeStepChoice& choice) const {
+  if (loop_.step >= numerics_.max_steps) {
+    return "step " + std::to_string(loop_.step) +
+           ": numerics.max_steps reached at t = " + std::to_string(loop_.time);
+  }
+  if (choice.dt < numerics_.dt_min && !choice.lands_on_end() && !choice.lands_on_output()) {
+    return "step " + std::to_string(loop_.step + 1) +
+           ": time step collapse, dt = " + std::to_string(choice.dt) + " (" + choice.reason +
+           " limited, cell " + std::to_string(limit_.loc / kLimitCodes) + ")";
+  }
+  return "";
+}
+
+void Simulation::advance(const TimeStepChoice& choice) {
+  const long next = loop_.step + 1;
+  // Lagrangian phase: predictor and corrector (DESIGN §3), with the next
+  // step's time-step candidates
+  limit_ = lagrange_->advance(choice.dt, next);
+  if (limit_.val < 0.0) throw RunFailure(describeInvalidCell(limit_, next, "end of step"));
+  RemapBoundaryFlux crossed;
+  if (remap_) {
+    // remap onto the initial mesh (DESIGN §5): densities, gradients, swept
+    // regions, fluxes, energy fix; then the time step of the remapped state
+    crossed = remap_->apply();
+    limit_ = lagrange_->computeGeometry(remap_->targetGeometry());
+    if (limit_.val < 0.0) {
+      remap_->restoreStartOfStep();
+      throw RunFailure(describeInvalidCell(limit_, next, "after the remap"));
+    }
+  }
+  loop_.time = choice.lands_on_end() ? t_end_ : loop_.time + choice.dt;
+  loop_.dt_prev = choice.dt;
+  loop_.step = next;
+  if (choice.lands_on_output()) {
+    loop_.time = pending_outputs_.front();
+    pending_outputs_.erase(pending_outputs_.begin());
+  }
+  diagnose(choice.dt, crossed);
+}
+
+void Simulation::diagnose(double dt, const RemapBoundaryFlux& crossed) {
+  auto scope = timers_.scope(Phase::Diagnostics);
+  const BoundaryPower boundary = computeBoundaryPower(setup_.mesh, state_);
+  loop_.impulse += dt * boundary.force + Vec3{crossed.v[1], crossed.v[2], crossed.v[3]};
+  loop_.work += dt * boundary.power + crossed.v[4];
+  loop_.mass_in += crossed.v[0];
+  totals_ = computeTotals(setup_.mesh, state_);
+  if (problem_.probe) loop_.probe.emplace_back(loop_.time, problem_.probe(setup_.mesh, state_));
+}
+
+// The largest energy the run held or received (a body at rest driven by a
+// traction starts with zero energy).
+double Simulation::energyScale() const {
+  return std::max(
+      {std::abs(loop_.initial.total()), std::abs(totals_.total()), std::abs(loop_.work), 1e-300});
+}
+double Simulation::driftMass() const {
+  return std::abs(totals_.mass - loop_.initial.mass - loop_.mass_in) / loop_.initial.mass;
+}
+double Simulation::driftEnergy() const {
+  return std::abs(totals_.total() - loop_.initial.total() - loop_.work) / energyScale();
+}
+double Simulation::driftMomentum() const {
+  const double scale = std::max(std::sqrt(2.0 * loop_.initial.mass * energyScale()), 1e-300);
+  return norm(totals_.momentum - loop_.initial.momentum - loop_.impulse) / scale;
+}
+
+}  // namespace lagremap

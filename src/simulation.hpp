@@ -1,0 +1,117 @@
+// The time loop of the paper's Fig. 2 (DESIGN §3, §5): each step is the
+// Lagrangian phase (predictor, corrector), then in remap mode the remap onto
+// the initial mesh (densities, gradients, swept regions, fluxes, energy fix),
+// then the diagnostics (conservation audit, probe). Outputs (history,
+// snapshots, checkpoints, progress) are observers of the loop
+// (src/outputs.hpp); set-up is src/setup.hpp.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "checkpoint.hpp"
+#include "lagrange_step.hpp"
+#include "problem.hpp"
+#include "remap_step.hpp"
+#include "run.hpp"
+#include "timers.hpp"
+
+namespace lagremap {
+
+// The time step a step takes and what limited it ("cfl", "volume",
+// "initial", "growth", "output", "end").
+struct TimeStepChoice {
+  double dt = 0.0;
+  const char* reason = "";
+  bool lands_on_output() const;
+  bool lands_on_end() const;
+};
+
+class Simulation;
+
+// Something that follows the loop: told once before the first step (of a
+// fresh run or a restart), after every step, and once at the end (the run
+// completed or failed; the state is then the last good one). Observers are
+// told in the order they were added, and at the end in the reverse order.
+class LoopObserver {
+ public:
+  virtual ~LoopObserver() = default;
+  virtual void start(const Simulation&) {}
+  virtual void afterStep(const Simulation&, const TimeStepChoice&) {}
+  virtual void finish(const Simulation&) {}
+};
+
+class Simulation {
+ public:
+  // Set-up: the problem's mesh and initial state (this rank's part of it),
+  // the Lagrangian and remap steps, and the state of a checkpoint to restart
+  // from. Bad input throws ConfigError.
+  Simulation(const RunOptions& options, const Problem& problem);
+
+  void observe(LoopObserver& observer) { observers_.push_back(&observer); }
+
+  // Steps to t_end, or until a step fails (failed()); then tells the observers.
+  void run();
+
+  // --- what the observers and the report read
+  const RunOptions& options() const { return options_; }
+  const Problem& problem() const { return problem_; }
+  const Mesh& mesh() const { return setup_.mesh; }
+  const State& state() const { return state_; }
+  // The generated mesh of a decomposed run (output connectivity), else null.
+  const Mesh* globalMesh() const { return halo_ ? &global_mesh_ : nullptr; }
+  const std::vector<MaterialParams>& materials() const { return setup_.materials; }
+  const Numerics& numerics() const { return numerics_; }
+  PhaseTimers& timers() const { return timers_; }
+  double time() const { return loop_.time; }
+  long step() const { return loop_.step; }
+  double tEnd() const { return t_end_; }
+  bool restarted() const { return restarted_; }
+  // The loop's counters and audit, as a checkpoint stores them.
+  const LoopState& loopState() const { return loop_; }
+  const LoopState& startState() const { return start_; }  // at the first step of this process
+  const Totals& totals() const { return totals_; }
+  bool failed() const { return !failure_.empty(); }
+  const std::string& failure() const { return failure_; }
+  double wallSeconds() const { return wall_seconds_; }
+  // Relative drifts of mass, momentum and total energy, what the boundaries
+  // (and the remap's outer faces) put in subtracted.
+  double driftMass() const;
+  double driftMomentum() const;
+  double driftEnergy() const;
+
+ private:
+  // dt = min(stable dt, growth * dt_prev, next output time, t_end) (DESIGN §3).
+  TimeStepChoice chooseTimeStep() const;
+  // Why the loop cannot take this step ("" if it can): step limit, dt collapse.
+  std::string stopReason(const TimeStepChoice& choice) const;
+  // One step of Fig. 2; throws RunFailure with the start-of-step state restored.
+  void advance(const TimeStepChoice& choice);
+  // Boundary impulse and work of the step, the totals, the probe.
+  void diagnose(double dt, const RemapBoundaryFlux& crossed);
+  double energyScale() const;  // of the drifts
+
+  const RunOptions& options_;
+  const Problem& problem_;
+  Numerics numerics_;
+  double t_end_ = 0.0;
+  ProblemSetup setup_;
+  Mesh global_mesh_;
+  std::unique_ptr<Halo> halo_;
+  State state_;
+  mutable PhaseTimers timers_;
+  std::unique_ptr<LagrangeStep> lagrange_;
+  std::unique_ptr<RemapStep> remap_;
+  StepLimit limit_;  // the next step's stable time step
+  LoopState loop_, start_;
+  bool restarted_ = false;
+  std::vector<double> pending_outputs_;  // snapshot times still ahead, sorted
+  Totals totals_;
+  std::string failure_;
+  double wall_seconds_ = 0.0;
+  std::vector<LoopObserver*> observers_;
+};
+
+}  // namespace lagremap

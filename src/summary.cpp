@@ -1,0 +1,146 @@
+#include "summary.hpp"
+
+#include <fstream>
+
+#include "../kernels/hex.hpp"
+#include "json.hpp"
+#include "kokkos_session.hpp"
+#include "parallel.hpp"
+
+namespace lagremap {
+namespace {
+
+// Sharpness of material k's interface in the final state : mixed cells (0.01 < alpha < 0.99), the
+// area of the alpha = 1/2 surface (interior faces across which alpha crosses 1/2), and the smeared
+// width sum 4 alpha (1 - alpha) v / area (one cell at alpha = 1/2 per cell of interface gives the
+// cell size).
+struct InterfaceMeasure {
+  long mixed_cells = 0;
+  double area = 0.0, smeared_width = 0.0;
+};
+
+InterfaceMeasure measureInterface(const Mesh& mesh, const FinalFields& fields, int k) {
+  InterfaceMeasure measure;
+  const auto neighbors = Kokkos::create_mirror_view_and_copy(HostSpace(), mesh.cell_neighbors);
+  double smeared = 0.0;
+  for (Index c = 0; c < mesh.n_cells; ++c) {
+    const double alpha = fields.alpha(c, k);
+    measure.mixed_cells += alpha > 0.01 && alpha < 0.99;
+    smeared += 4.0 * alpha * (1.0 - alpha) * fields.vol(c);
+    Vec3 x[8];
+    for (int p = 0; p < 8; ++p) x[p] = loadVec3(fields.mesh.x_n, fields.mesh.cell_nodes(c, p));
+    for (int f = 0; f < 6; ++f) {
+      const Index nb = neighbors(c, f);
+      if (nb <= c || (alpha - 0.5) * (fields.alpha(nb, k) - 0.5) >= 0.0) continue;
+      Vec3 q[4], w[4];
+      hex::faceNodes(x, f, q);
+      measure.area += norm(hex::faceCornerVectors(q, w));
+    }
+  }
+  measure.smeared_width = measure.area > 0.0 ? smeared / measure.area : 0.0;
+  return measure;
+}
+
+void writeRunAndSpeed(JsonWriter& json, const Simulation& simulation, const RunResult& result) {
+  const Config& config = simulation.options().config;
+  const Mesh& mesh = simulation.mesh();
+  json.value("problem", simulation.options().problem)
+      .value("mode", simulation.options().mode)
+      .value("order", simulation.numerics().order)
+      .value("gather", config.text("numerics.gather"))
+      .value("threads", executionSpaceIsHost() ? long(ExecSpace().concurrency()) : 0L)
+      .value("concurrency", long(ExecSpace().concurrency()))
+      .value("execution_space", ExecSpace::name())
+      .value("cells", mesh.n_global_cells)
+      .value("nodes", mesh.n_global_nodes)
+      .value("ranks", long(parallel::size()))
+      .value("steps", result.steps)
+      .value("t_end", simulation.tEnd())
+      .value("t_final", result.time)
+      .value("status", result.failed ? "failed" : "completed");
+  if (result.failed) json.value("failure", result.failure);
+  json.value("wall_seconds", result.wall_seconds);
+  const PhaseTimers& timers = simulation.timers();
+  json.beginObject("cell_steps_per_second").value("total", result.cell_steps_per_second);
+  json.beginObject("phases");
+  for (int phase = 0; phase < int(Phase::Count); ++phase) {
+    const double seconds = timers.seconds(Phase(phase));
+    json.value(phaseName(Phase(phase)),
+               seconds > 0 ? double(mesh.n_global_cells) * result.steps / seconds : 0.0);
+  }
+  json.endObject().endObject();
+  json.beginObject("phase_seconds");
+  for (int phase = 0; phase < int(Phase::Count); ++phase) {
+    json.value(phaseName(Phase(phase)), timers.seconds(Phase(phase)));
+  }
+  json.endObject();
+}
+
+void writeConservation(JsonWriter& json, const Simulation& simulation, const RunResult& result) {
+  json.beginObject("drift")
+      .value("mass", result.drift_mass)
+      .value("momentum", result.drift_momentum)
+      .value("total_energy", result.drift_energy)
+      .value("note", "relative; boundary impulse and work subtracted (conservation audit)")
+      .endObject();
+  json.beginObject("totals")
+      .value("mass", simulation.totals().mass)
+      .value("kinetic_energy", simulation.totals().kinetic)
+      .value("internal_energy", simulation.totals().internal)
+      .value("boundary_work", simulation.loopState().work)
+      .endObject();
+}
+
+void writeInterfaces(JsonWriter& json, const Simulation& simulation, const RunResult& result) {
+  const int n_materials = simulation.state().n_materials;
+  if (n_materials <= 1) return;
+  const Mesh& mesh = simulation.globalMesh() ? *simulation.globalMesh() : simulation.mesh();
+  json.beginObject("interfaces");
+  for (int k = 0; k < n_materials; ++k) {
+    const InterfaceMeasure measure = measureInterface(mesh, result.fields, k);
+    json.beginObject("material_" + std::to_string(k))
+        .value("solid", simulation.materials()[k].strength != StrengthKind::None)
+        .value("mixed_cells", measure.mixed_cells)
+        .value("area", measure.area)
+        .value("mixed_cells_per_unit_area",
+               measure.area > 0.0 ? double(measure.mixed_cells) / measure.area : 0.0)
+        .value("smeared_width", measure.smeared_width)
+        .value("note",
+               "mixed: 0.01 < alpha < 0.99; area of the alpha = 1/2 surface [m^2]; "
+               "width = sum 4 alpha (1 - alpha) v / area [m]")
+        .endObject();
+  }
+  json.endObject();
+}
+
+void writeChecksAndKeys(JsonWriter& json, const Config& config, const RunResult& result) {
+  json.beginObject("checks");
+  for (const auto& check : result.checks) {
+    json.beginObject(check.name)
+        .value("value", check.value)
+        .value("reference", check.reference)
+        .value("tolerance", check.tolerance);
+    if (check.lagrange_reference) json.value("lagrange_reference", *check.lagrange_reference);
+    if (check.paper) json.value("paper", *check.paper);
+    json.value("pass", check.pass()).value("note", check.note).endObject();
+  }
+  json.endObject();
+  json.beginObject("config");
+  for (const auto& [key, param] : config.params()) json.value(key, param.value);
+  json.endObject();
+}
+
+}  // namespace
+
+void writeSummary(const std::string& path, const Simulation& simulation, const RunResult& result) {
+  std::ofstream out(path);
+  JsonWriter json(out);
+  json.beginObject();
+  writeRunAndSpeed(json, simulation, result);
+  writeConservation(json, simulation, result);
+  writeInterfaces(json, simulation, result);
+  writeChecksAndKeys(json, simulation.options().config, result);
+  json.endObject();
+}
+
+}  // namespace lagremap
