@@ -30,7 +30,7 @@ struct State {
   // carried (mass, energy) but has no say in the cell's stress (its density
   // is the ratio of two tiny remapped numbers). 0 in lagrange mode.
   double alpha_trace = 0.0;
-  MatRealView alpha_ck;  // volume fraction (README: shared volume changes in mixed cells)
+  MatRealView alpha_ck;  // volume fraction (docs/method.md §4.2: shared volume changes)
   MatRealView m_ck;      // mass
   MatRealView e_ck;      // specific internal energy
   MatRealView p_ck;      // pressure (derived at every stage)

@@ -36,66 +36,27 @@ struct CellThermo {
   bool valid = true;                // some material present, every one inside its EOS's domain
 };
 
-// Volume fractions of a mixed cell at the end of a Lagrangian stage: the
-// cell's volume change since the start of the step is shared among its
-// materials in proportion to their compressibility alpha^k / (rho^k a_k^2)
-// (equal pressure increments) instead of by volume fraction (equal strain):
-//   alpha^k v = alpha^k_n v_n + (w^k_n / sum w_n) (v - v_n).
-// Under equal strain a solid sharing a cell with gas is compressed or
-// stretched as much as the gas, to GPa in a step (README, Numerical method).
-// Stress relaxation: each material's volume also changes by
-//   relax^k = v_n w^k_n (P^k - P_mean),  P_mean = sum w_n P / sum w_n  (sum 0),
-// so that to first order the P^k equalise within the step; its work is
-// -p^k relax^k (updateMaterials), irreversible. P^k = p^k for a fluid, and
-// p^k - f^k n^k . S^k . n^k for a solid, n^k the normal of its interface from
-// the last remap: the solid's normal stress -p + S_nn meets the gas pressure
-// across its interface.
-// - A Neo-Hookean solid (isSolidBody; any volume fraction above the trace):
-//   f^k = 1, and its own normal stretch (its volume change against the
-//   cell's) enters its B (updateMaterials), so that its density and its
-//   deviator agree and P^k responds with the longitudinal modulus
-//   rho (a^2 + 4/3 a_T^2), which its weight w^k uses (cellThermo; with the
-//   bulk modulus the relaxation overshot 2.7-fold and diverged). Without the
-//   stretch, the `beam`'s surface layer carried the pressure of a solid
-//   stretched along the plate but none of its lateral contraction in its
-//   deviator (sigma_yy of 1e10 Pa where there is none), and the plate's
-//   bending stiffness was 0.70 EI against 0.95 EI in lagrange mode (first
-//   zero crossing of the tip at 18.9 us); with it, 0.96 EI and 15.4 us
-//   (16.8 us when only cells at least half solid stretched; lagrange 14.8).
-// - A hypo-elastic solid filling at least kSolidBodyAlpha of the cell: the
-//   same (f^k = 1, its own normal stretch in its Jaumann rate, longitudinal
-//   modulus in w^k; for an elastic-plastic solid at yield the bulk modulus
-//   would be the right one, and the longitudinal one merely relaxes it more
-//   slowly). Its deviator is then that of the body it belongs to: the
-//   `shell`'s surface cells are in plane strain at yield, S_rr = -S_tt =
-//   Y / sqrt(3) with p = S_rr (sigma_rr = 0 against the gas), and hold the
-//   interior's hoop stress. With the cell's strain rate, which is the gas's,
-//   their beryllium was in uniaxial compression along the hoop (S_zz =
-//   -S_tt, S_rr = 0: half the hoop stress) and the shell collapsed 1.6 mm
-//   too far (48.4 / 77.1 mm at 160 x 160; now 49.8 / 78.0, Howell and Ball's
-//   50 / 78.1).
-// - Below kSolidBodyAlpha (a fragment or mist in gas), f^k = 0: it meets the
-//   gas with its pressure alone and keeps the cell's strain rate.
-// (Measurements of these choices made before the least-squares fix of
-// reconstruction.hpp, in runs of one cell along z, had interface normals
-// along z, and are not quoted here.)
-// Why: without relaxation a solid sharing a cell with gas keeps its pressure
-// while the gas takes every volume change, and a cell of beryllium at 3e8 Pa
-// and gas at 1e4 Pa expands without end (the `shell`'s inner surface turned
-// into a foam of beryllium and near-vacuum 20 mm thick and the shell stopped
-// 5 mm early); equalising p instead of the normal stress leaves a surface
-// layer at yield with p = 0 instead of p = S_rr (sigma_rr = 0 against the
-// gas), short of the interior's hoop stress by S_rr = Y / sqrt(3).
+// Volume fractions of a mixed cell at the end of a Lagrangian stage
+// (docs/method.md §4.2-4.4, departures from DESIGN §3's equal strain):
+// - shared volume change: the cell's change since the start of the step goes
+//   to its materials in proportion to their compressibility w^k = alpha^k /
+//   (rho^k a_k^2), alpha^k v = alpha^k_n v_n + (w^k_n / sum w_n) (v - v_n);
+// - pressure relaxation: each material's volume also changes by
+//   relax^k = v_n w^k_n (P^k - P_mean), P_mean = sum w_n P / sum w_n (sum 0),
+//   so that to first order the P^k equalise within the step; its work
+//   -p^k relax^k (updateMaterials) is irreversible. P^k = p^k for a fluid,
+//   p^k - n^k . S^k . n^k for a solid body (isSolidBody; n^k its interface
+//   normal from the last remap), whose own normal stretch enters its B or
+//   Jaumann rate (updateMaterials) and whose weight uses the longitudinal
+//   modulus rho (a^2 + 4/3 a_T^2); a solid fragment below kSolidBodyAlpha
+//   meets the gas with its pressure alone.
 // p^k are the stage-start pressures, S^k the step-start deviators (the same
 // numbers in updateMaterials and here). Summed as
 // v_n (w^k / sum w) sum_m w^m (P^k - P^m): the mean itself loses the
-// differences to round-off when one weight (a near-vacuum gas, w ~ 1e7)
-// dwarfs the others, and w^k times that round-off was three times the
-// cell's volume. Traces (no say in the stress, w = 0) take no part.
-// The linearisation holds for small volume changes only: an aluminium
-// stretched to 0.78 rho0 (-1.2e10 Pa: it would spall) beside gas was
-// squeezed to 3 rho0 in one stage. So no material changes its volume by more
-// than kMaxRelaxation of it per step; all are scaled alike (the sum stays 0).
+// differences to round-off when one weight (a near-vacuum gas) dwarfs the
+// others. Traces (no say in the stress, w = 0) take no part. The
+// linearisation holds for small volume changes only, so no material changes
+// its volume by more than kMaxRelaxation of it per step (all scaled alike).
 constexpr double kMaxRelaxation = 0.1;
 // No material of a mixed cell is squeezed below this fraction of its volume at
 // the start of the step (shareVolumeChange; updateMaterials stops its pdV work

@@ -46,6 +46,157 @@ KOKKOS_INLINE_FUNCTION void mirrorAcrossFace(const Vec3 x[8], int f, const Vec3&
 
 }  // namespace detail
 
+namespace detail {
+
+// The face-neighbour stencil of a cell for the reconstruction (DESIGN §3):
+// the least-squares normal matrix, the right-hand sides of V and of the
+// pressure (a fluid) or the Cauchy stress (a solid), and the neighbour jumps
+// the limiters measure against. Across a wall the neighbour is the cell's
+// mirror image; a free side leaves a zero jump.
+struct CornerStencil {
+  LeastSquares lsq;
+  Vec3 rhs_v[3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, rhs_p{0, 0, 0};
+  Vec3 rhs_sigma[6];  // (a solid's only)
+  Vec3 dv_nb[6];
+  SymMat3 dsigma_nb[6];
+  Bounds pb;
+  KOKKOS_INLINE_FUNCTION explicit CornerStencil(double p_cell) : pb(p_cell) {}
+};
+
+template <class Neighbors, class FaceSide, class SideKind>
+KOKKOS_FORCEINLINE_FUNCTION void gatherStencil(const State& s, const Neighbors& neighbors,
+                                               const FaceSide& face_side, const SideKind& side_kind,
+                                               Index c, const Vec3 x[8], const Vec3& v_cell,
+                                               double p_cell, const SymMat3& sigma_cell, bool solid,
+                                               CornerStencil& st) {
+  const Vec3 centroid = loadVec3(s.x_c, c);
+  for (int i = 0; i < (solid ? 6 : 0); ++i) st.rhs_sigma[i] = Vec3{0, 0, 0};
+  for (int f = 0; f < 6; ++f) {
+    const Index nb = neighbors(c, f);
+    Vec3 dx, dv, normal;
+    double dp = 0.0;
+    SymMat3 dsigma = identitySym(0.0);
+    if (nb >= 0) {
+      dx = loadVec3(s.x_c, nb) - centroid;
+      dv = loadVec3(s.v_c, nb) - v_cell;
+      dp = s.p_c(nb) - p_cell;
+      // a fluid neighbour's S_c is zero
+      if (solid) dsigma = loadSym(s.S_c, nb) + identitySym(-s.p_c(nb)) - sigma_cell;
+    } else if (face_side(c, f) >= 0 && side_kind(face_side(c, f)) == int(BoundaryKind::Wall)) {
+      mirrorAcrossFace(x, f, centroid, v_cell, dx, dv, normal);
+      if (solid) dsigma = mirrorJump(sigma_cell, normal);
+    } else {
+      st.dv_nb[f] = Vec3{0, 0, 0};
+      if (solid) st.dsigma_nb[f] = identitySym(0.0);
+      continue;
+    }
+    st.lsq.addOffset(dx);
+    st.rhs_v[0] += dv.x * dx;
+    st.rhs_v[1] += dv.y * dx;
+    st.rhs_v[2] += dv.z * dx;
+    st.dv_nb[f] = dv;
+    if (solid) {
+      st.rhs_sigma[0] += dsigma.xx * dx;
+      st.rhs_sigma[1] += dsigma.yy * dx;
+      st.rhs_sigma[2] += dsigma.zz * dx;
+      st.rhs_sigma[3] += dsigma.xy * dx;
+      st.rhs_sigma[4] += dsigma.yz * dx;
+      st.rhs_sigma[5] += dsigma.xz * dx;
+      st.dsigma_nb[f] = dsigma;
+    } else {
+      st.rhs_p += dp * dx;
+      st.pb.include(p_cell + dp);
+    }
+  }
+}
+
+// Node velocities: the least-squares gradient, limited as a vector by one
+// frame-independent factor (projectedLimiter, docs/method.md §2.3; edge and
+// corner neighbours for V only) and by the acoustic bound |dV| <= aL: a
+// larger excursion is a discontinuity the linear profile cannot hold, which
+// a near-vacuum gas cannot afford in its dissipation (docs/method.md §2.5).
+// Squared norms compared: one square root per cell.
+KOKKOS_FORCEINLINE_FUNCTION void limitedNodeVelocities(const CornerStencil& st, const SymMat3& inv,
+                                                       const Vec3 offsets[8], const Vec3& v_cell,
+                                                       double sound_speed, bool solid,
+                                                       Vec3 v_node[8]) {
+  const Vec3 grad_v[3] = {inv * st.rhs_v[0], inv * st.rhs_v[1], inv * st.rhs_v[2]};
+  Vec3 dv_node[8];
+  double length2[8];
+  for (int p = 0; p < 8; ++p) {
+    dv_node[p] =
+        Vec3{dot(grad_v[0], offsets[p]), dot(grad_v[1], offsets[p]), dot(grad_v[2], offsets[p])};
+    length2[p] = dot(dv_node[p], dv_node[p]);
+  }
+  const double phi_v = solid ? projectedLimiter<true, true>(st.dv_nb, dv_node, length2)
+                             : projectedLimiter<false, true>(st.dv_nb, dv_node, length2);
+  double longest2 = 0.0;
+  for (int p = 0; p < 8; ++p) longest2 = length2[p] > longest2 ? length2[p] : longest2;
+  const double phi = phi_v * phi_v * longest2 > sound_speed * sound_speed
+                         ? sound_speed / math::sqrt(longest2)
+                         : phi_v;
+  for (int p = 0; p < 8; ++p) v_node[p] = v_cell + phi * dv_node[p];
+}
+
+// A solid's node stresses: the whole Cauchy stress limited as a tensor by one
+// factor (pulled-back jumps, projectedLimiter with the plateau guard) and the
+// acoustic bound |d sigma| <= rho aL^2; the unlimited excursions G d_p give
+// both the node values and the limiter's lengths.
+KOKKOS_FORCEINLINE_FUNCTION void limitedNodeStresses(const CornerStencil& st, const SymMat3& inv,
+                                                     const Vec3 offsets[8],
+                                                     const SymMat3& sigma_cell, double stress_scale,
+                                                     SymMat3 sigma_node[8]) {
+  Vec3 grad_sigma[6];
+  for (int i = 0; i < 6; ++i) grad_sigma[i] = inv * st.rhs_sigma[i];
+  SymMat3 excursion[8];
+  double length2[8], largest2 = 0.0;
+  for (int p = 0; p < 8; ++p) {
+    const Vec3& d = offsets[p];
+    excursion[p] = SymMat3{dot(grad_sigma[0], d), dot(grad_sigma[1], d), dot(grad_sigma[2], d),
+                           dot(grad_sigma[3], d), dot(grad_sigma[4], d), dot(grad_sigma[5], d)};
+    length2[p] = ddot(excursion[p], excursion[p]);
+    largest2 = length2[p] > largest2 ? length2[p] : largest2;
+  }
+  Vec3 pulled[6];
+  pullBack(grad_sigma, st.dsigma_nb, pulled);
+  double phi_sigma = projectedLimiter<true, false>(pulled, offsets, length2);
+  if (phi_sigma * phi_sigma * largest2 > stress_scale * stress_scale) {
+    phi_sigma = stress_scale / math::sqrt(largest2);
+  }
+  for (int p = 0; p < 8; ++p) sigma_node[p] = sigma_cell + phi_sigma * excursion[p];
+}
+
+// A fluid's node pressures: Barth-Jespersen in its two-division form (the
+// same phi as projectedLimiter<false, false>) and the acoustic bound
+// |dp| <= rho aL^2.
+KOKKOS_FORCEINLINE_FUNCTION void limitedNodePressures(const CornerStencil& st, const SymMat3& inv,
+                                                      const Vec3 offsets[8], double p_cell,
+                                                      double stress_scale, double p_node[8]) {
+  const Vec3 grad_p = inv * st.rhs_p;
+  double dp_node[8];
+  VertexExcursion excursion;
+  LAGREMAP_UNROLL
+  for (int p = 0; p < 8; ++p) {
+    dp_node[p] = dot(grad_p, offsets[p]);
+    excursion.include(dp_node[p]);
+  }
+  double phi_p = cellLimiter(excursion, p_cell, st.pb, 1.0);
+  double largest = 0.0;
+  for (int p = 0; p < 8; ++p) {
+    const double size = math::fabs(dp_node[p]);
+    largest = size > largest ? size : largest;
+  }
+  if (phi_p * largest > stress_scale) phi_p = stress_scale / largest;
+  for (int p = 0; p < 8; ++p) p_node[p] = p_cell + phi_p * dp_node[p];
+}
+
+}  // namespace detail
+
+// Per cell: V and sigma reconstructed at its nodes (DESIGN §3: piecewise
+// constant at first order; second order: least-squares gradients limited by
+// one frame-independent factor each, a solid's whole Cauchy stress as a
+// tensor, a fluid's pressure as a scalar), then B_cp = M_cp V_c(p) -
+// sigma_c(p) A_cp.
 inline void computeCornerTerms(const Mesh& mesh, const State& state,
                                const CornerControls& controls) {
   const auto cell_nodes = mesh.cell_nodes;
@@ -66,18 +217,12 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
         const Vec3 v_cell = loadVec3(s.v_c, c);
         const double p_cell = s.p_c(c);
         const bool solid = s.aT_c(c) > 0.0;  // some material with strength in the cell
-
-        // --- reconstruction of V and sigma at the cell's nodes (DESIGN §3, second
-        // order): least-squares gradients; V limited as a vector, a fluid's
-        // pressure as a scalar and a solid's whole Cauchy stress as a tensor, each
-        // with one frame-independent factor (projectedLimiter); solids add the
-        // plateau guard that lets an elastic precursor out of a plastic front.
         const SymMat3 sigma_cell =
             solid ? loadSym(s.S_c, c) + identitySym(-p_cell) : identitySym(-p_cell);
         Vec3 v_node[8];
         double p_node[8];       // fluid: sigma = -p I
         SymMat3 sigma_node[8];  // solid
-        if (!second_order) {    // piecewise constant
+        if (!second_order) {
           for (int p = 0; p < 8; ++p) {
             v_node[p] = v_cell;
             p_node[p] = p_cell;
@@ -86,134 +231,26 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
         } else {
           Vec3 x[8];
           for (int p = 0; p < 8; ++p) x[p] = loadVec3(x_n, cell_nodes(c, p));
+          detail::CornerStencil stencil(p_cell);
+          detail::gatherStencil(s, neighbors, face_side, side_kind, c, x, v_cell, p_cell,
+                                sigma_cell, solid, stencil);
+          const SymMat3 inv = stencil.lsq.solver();
           const Vec3 centroid = loadVec3(s.x_c, c);
-          LeastSquares lsq;
-          Vec3 rhs_v[3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, rhs_p{0, 0, 0};
-          Vec3 rhs_sigma[6];  // (a solid's only)
-          for (int i = 0; i < (solid ? 6 : 0); ++i) rhs_sigma[i] = Vec3{0, 0, 0};
-          // neighbour jumps for the limiters; a free side leaves a zero jump
-          Vec3 dv_nb[6];
-          SymMat3 dsigma_nb[6];
-          Bounds pb(p_cell);
-          for (int f = 0; f < 6; ++f) {
-            const Index nb = neighbors(c, f);
-            Vec3 dx, dv, normal;
-            double dp = 0.0;
-            SymMat3 dsigma = identitySym(0.0);
-            if (nb >= 0) {
-              dx = loadVec3(s.x_c, nb) - centroid;
-              dv = loadVec3(s.v_c, nb) - v_cell;
-              dp = s.p_c(nb) - p_cell;
-              // a fluid neighbour's S_c is zero
-              if (solid) dsigma = loadSym(s.S_c, nb) + identitySym(-s.p_c(nb)) - sigma_cell;
-            } else if (face_side(c, f) >= 0 &&
-                       side_kind(face_side(c, f)) == int(BoundaryKind::Wall)) {
-              detail::mirrorAcrossFace(x, f, centroid, v_cell, dx, dv, normal);
-              if (solid) dsigma = mirrorJump(sigma_cell, normal);
-            } else {
-              dv_nb[f] = Vec3{0, 0, 0};
-              if (solid) dsigma_nb[f] = identitySym(0.0);
-              continue;
-            }
-            lsq.addOffset(dx);
-            rhs_v[0] += dv.x * dx;
-            rhs_v[1] += dv.y * dx;
-            rhs_v[2] += dv.z * dx;
-            dv_nb[f] = dv;
-            if (solid) {
-              rhs_sigma[0] += dsigma.xx * dx;
-              rhs_sigma[1] += dsigma.yy * dx;
-              rhs_sigma[2] += dsigma.zz * dx;
-              rhs_sigma[3] += dsigma.xy * dx;
-              rhs_sigma[4] += dsigma.yz * dx;
-              rhs_sigma[5] += dsigma.xz * dx;
-              dsigma_nb[f] = dsigma;
-            } else {
-              rhs_p += dp * dx;
-              pb.include(p_cell + dp);
-            }
-          }
-          const SymMat3 inv = lsq.solver();
           Vec3 offsets[8];
           for (int p = 0; p < 8; ++p) offsets[p] = x[p] - centroid;
-          const Vec3 grad_v[3] = {inv * rhs_v[0], inv * rhs_v[1], inv * rhs_v[2]};
-          Vec3 dv_node[8];
-          double length2[8];
-          for (int p = 0; p < 8; ++p) {
-            dv_node[p] = Vec3{dot(grad_v[0], offsets[p]), dot(grad_v[1], offsets[p]),
-                              dot(grad_v[2], offsets[p])};
-            length2[p] = dot(dv_node[p], dv_node[p]);
-          }
-          // edge and corner neighbours for V only: with them for sigma too, the
-          // pile's free sides ring (lateral velocity 2e-3 of the axial one, against
-          // 5e-5 with either alone; README, Numerical method)
-          const double phi_v = solid ? projectedLimiter<true, true>(dv_nb, dv_node, length2)
-                                     : projectedLimiter<false, true>(dv_nb, dv_node, length2);
-          // Acoustic bound: no node value further from the cell's than the
-          // cell's own sound speed, |dV| <= aL (and |d sigma|, |dp| <= rho aL^2
-          // below). A larger excursion is a discontinuity the linear profile
-          // cannot hold; the cell pays for it in its dissipation, of order
-          // (aL dt / h) |dV|^2 per unit mass, which a near-vacuum gas (the
-          // `ball`'s, aL ~ 2 m/s beside aluminium at 1000 m/s) cannot afford:
-          // it went to negative energy. Bounded so, the error stays below a
-          // CFL-number fraction of aL^2, i.e. of the gas's internal energy,
-          // and the node's velocity from a pressure excursion, |dp| / (rho
-          // aL), below aL. Inactive in smooth flow.
           const double sound_speed = s.aL_c(c);
           const double stress_scale = s.rho_c(c) * sound_speed * sound_speed;
-          // (squared norms compared: one square root per cell)
-          double longest2 = 0.0;
-          for (int p = 0; p < 8; ++p) longest2 = length2[p] > longest2 ? length2[p] : longest2;
-          const double phi_acoustic_v = phi_v * phi_v * longest2 > sound_speed * sound_speed
-                                            ? sound_speed / math::sqrt(longest2)
-                                            : phi_v;
-          for (int p = 0; p < 8; ++p) v_node[p] = v_cell + phi_acoustic_v * dv_node[p];
+          detail::limitedNodeVelocities(stencil, inv, offsets, v_cell, sound_speed, solid, v_node);
           if (solid) {
-            Vec3 grad_sigma[6];
-            for (int i = 0; i < 6; ++i) grad_sigma[i] = inv * rhs_sigma[i];
-            // the unlimited excursions G d_p (kept for the node values) and
-            // their Frobenius squares, the limiter's length2
-            SymMat3 excursion[8];
-            double largest2 = 0.0;  // acoustic bound (above)
-            for (int p = 0; p < 8; ++p) {
-              const Vec3& d = offsets[p];
-              excursion[p] =
-                  SymMat3{dot(grad_sigma[0], d), dot(grad_sigma[1], d), dot(grad_sigma[2], d),
-                          dot(grad_sigma[3], d), dot(grad_sigma[4], d), dot(grad_sigma[5], d)};
-              length2[p] = ddot(excursion[p], excursion[p]);
-              largest2 = length2[p] > largest2 ? length2[p] : largest2;
-            }
-            Vec3 pulled[6];
-            pullBack(grad_sigma, dsigma_nb, pulled);
-            double phi_sigma = projectedLimiter<true, false>(pulled, offsets, length2);
-            if (phi_sigma * phi_sigma * largest2 > stress_scale * stress_scale) {
-              phi_sigma = stress_scale / math::sqrt(largest2);
-            }
-            for (int p = 0; p < 8; ++p) sigma_node[p] = sigma_cell + phi_sigma * excursion[p];
+            detail::limitedNodeStresses(stencil, inv, offsets, sigma_cell, stress_scale,
+                                        sigma_node);
           } else {
-            // a scalar: Barth-Jespersen in its two-division form (the same phi
-            // as projectedLimiter<false, false>)
-            const Vec3 grad_p = inv * rhs_p;
-            double dp_node[8];
-            VertexExcursion excursion;
-            LAGREMAP_UNROLL
-            for (int p = 0; p < 8; ++p) {
-              dp_node[p] = dot(grad_p, offsets[p]);
-              excursion.include(dp_node[p]);
-            }
-            double phi_p = cellLimiter(excursion, p_cell, pb, 1.0);
-            double largest = 0.0;  // acoustic bound (above)
-            for (int p = 0; p < 8; ++p) {
-              const double size = math::fabs(dp_node[p]);
-              largest = size > largest ? size : largest;
-            }
-            if (phi_p * largest > stress_scale) phi_p = stress_scale / largest;
-            for (int p = 0; p < 8; ++p) p_node[p] = p_cell + phi_p * dp_node[p];
+            detail::limitedNodePressures(stencil, inv, offsets, p_cell, stress_scale, p_node);
           }
         }
 
-        // --- B_cp = M_cp V_c(p) - sigma_c(p) A_cp (a loop per case: the
-        // compiler does not take the tests out of the loop by itself)
+        // B_cp = M_cp V_c(p) - sigma_c(p) A_cp (a loop per case: the compiler
+        // does not take the tests out of the loop by itself)
         const auto storeRhs = [&](int p, const Vec3& stress_force) {
           const Index corner = 8 * c + p;
           storeVec3(s.B_cp, corner, loadSym(s.M_cp, corner) * v_node[p] + stress_force);
@@ -404,33 +441,130 @@ KOKKOS_INLINE_FUNCTION Mat3 stageDeformation(const CellNodesView& cell_nodes, co
   return deformation;
 }
 
-// The materials of one cell over the stage (DESIGN §3-4), given the cell's new
-// specific internal energy e_new = E - |V|^2/2:
-// - internal energies: a pure cell's material takes e_new; in a mixed cell,
-//   with W^k = dt alpha^k sigma^k : L (sigma^k of the stage start) and the
-//   dissipation D = m (e_new - e^n) - sum_k W^k,
-//   m^k (e^k - e^k,n) = W^k + share^k D, which sums to the cell's change,
-//   share^k = m^k / m for D >= 0; for D < 0 by the masses of the condensed
-//   materials, or without them by the gases' internal energies (not alpha^k
-//   as DESIGN §3 says: see below); a trace (State::alpha_trace) does no work,
-//   W^k = 0, but takes its share of D, and so does a material holding less
-//   than kMassTrace of the cell's mass (see below);
-// - hypo-elastic deviators: objective Jaumann update of S^k with L, then
-//   radial return (the plastic work is already in the total energy, so e
-//   receives it without an extra term);
-// - Neo-Hookean B^k = F B^k,n F^T (SPD kept).
 // A material with less than this fraction of its cell's mass does no pdV work
-// of its own: it takes the cell's specific heat (its share of D by mass).
-// Why: the near-vacuum gas of the `ball` (1e-5 kg/m^3, 1e-9 of an aluminium
-// cell's mass) is squeezed by the pressure relaxation and the cell's
-// compression in every Lagrangian stage, heating adiabatically, and
-// re-expanded by the remap, which mixes volume fractions and does no work:
-// a ratchet that took it to 4e12 J/kg in mixed cells and 1e10 J/kg in the
-// pure gas cells the remap carried it to (sound speeds of 80 km/s, the time
-// step cut 14-fold). A trace by mass has no say in the cell's energy; its
-// volume still yields to the others' (relaxation), as a void's would.
+// of its own: it takes the cell's specific heat (its share of D by mass). A
+// trace by mass has no say in the cell's energy; its volume still yields to
+// the others' (relaxation), as a void's would. Without it the `ball`'s
+// near-vacuum gas ratchets up in temperature, compressed adiabatically by
+// every Lagrangian stage and re-expanded by the remap without work
+// (docs/method.md §4.6).
 constexpr double kMassTrace = 1e-6;
 
+namespace detail {
+
+// What a mixed cell's materials share over a stage (docs/method.md §4): each
+// material's own volume ratio (end over start of step), the cell's energy
+// budget D = m (e_new - e^n) - sum_k W^k, and the masses that share it.
+struct MixedCellBudget {
+  double own_ratio[kMaxMaterials];
+  double dissipation = 0.0;
+  double present_mass = 0.0;
+  double condensed_mass = 0.0;  // not ideal gases: their energy may go negative, in tension
+  double gas_heat = 0.0;        // the gases' positive internal energy
+};
+
+// Each material's volume ratio over the step: dV^k = share^k dt v tr L +
+// relax^k, as shareVolumeChange makes it, and like it never below
+// kMinVolumeKept of the start volume (the pdV work stops where the volume
+// does; what the cap leaves out goes to D, shared by mass).
+KOKKOS_FORCEINLINE_FUNCTION void ownVolumeRatios(const State& s, Index c, double volume_change,
+                                                 double own_ratio[]) {
+  double weight_sum = 0.0;  // compressibility weights of the step start
+  for (int k = 0; k < s.n_materials; ++k) {
+    if (s.alpha_ck(c, k) > 0.0) weight_sum += s.w_ck0(c, k);
+  }
+  double relax[kMaxMaterials] = {};
+  relaxationVolumes(s, c, relax);
+  for (int k = 0; k < s.n_materials; ++k) {
+    if (!(s.alpha_ck(c, k) > 0.0)) continue;
+    const double share = weight_sum > 0.0 ? s.w_ck0(c, k) / weight_sum : s.alpha_ck(c, k);
+    const double start_volume = s.alpha_ck0(c, k) * s.vol_c0(c);
+    const double own_change = share * volume_change + relax[k];
+    own_ratio[k] = own_change < -(1.0 - kMinVolumeKept) * start_volume
+                       ? kMinVolumeKept
+                       : 1.0 + own_change / start_volume;
+  }
+}
+
+// A Neo-Hookean body's velocity gradient in a mixed cell (isSolidBody,
+// geometry.hpp): the cell's plus the normal stretch rate that makes its
+// volume rate its own; the gas beside it takes the cell's compression.
+KOKKOS_FORCEINLINE_FUNCTION Mat3 materialGradient(const State& s, Index c, int k, bool mixed,
+                                                  const Mat3& gradient, double own_ratio,
+                                                  double dt_stage) {
+  Vec3 n;
+  if (!(mixed && isSolidBody(s, c, k, n))) return gradient;
+  Mat3 own = gradient;
+  addOuter(own, (own_ratio - 1.0) / dt_stage - trace(gradient), n, n);
+  return own;
+}
+
+// W^k = -p^k dV^k + dt v alpha^k S^k : L^k (zero for a trace by mass).
+KOKKOS_FORCEINLINE_FUNCTION double materialWork(const State& s, Index c, int k,
+                                                const Mat3& gradient_k, double own_ratio,
+                                                double dt_stage) {
+  if (s.m_ck(c, k) < kMassTrace * s.m_c(c)) return 0.0;
+  const double start_volume = s.alpha_ck0(c, k) * s.vol_c0(c);
+  return -s.p_ck(c, k) * (own_ratio - 1.0) * start_volume +
+         dt_stage * s.vol_c(c) * stressPower(s, c, k, gradient_k, 0.0);
+}
+
+// Material k's share of D: by mass for D >= 0 (kinetic energy of the cell's
+// one velocity turned into heat: the mass carries it; by volume fraction, as
+// DESIGN §3 says, a gas beside a solid got half the heat for 1e-9 of the
+// mass). D < 0 is an error of the second-order corner velocities, which a gas
+// cannot afford below zero energy: it goes to the condensed materials by
+// mass, and only without them to the gases by their internal energies.
+KOKKOS_FORCEINLINE_FUNCTION double dissipationShare(const State& s, Index c, int k,
+                                                    const MixedCellBudget& budget) {
+  const bool condensed = s.materials(k).eos != EosKind::IdealGas;
+  if (budget.dissipation < 0.0 && budget.condensed_mass > 0.0) {
+    return condensed ? s.m_ck(c, k) / budget.condensed_mass : 0.0;
+  }
+  if (budget.dissipation < 0.0 && budget.gas_heat > 0.0) {
+    return s.e_ck0(c, k) > 0.0 ? s.m_ck(c, k) * s.e_ck0(c, k) / budget.gas_heat : 0.0;
+  }
+  return s.m_ck(c, k) / budget.present_mass;
+}
+
+// The budget of a mixed cell whose specific internal energy is now e_new.
+KOKKOS_FORCEINLINE_FUNCTION void mixedCellBudget(const State& s, Index c, double e_new,
+                                                 const Mat3& gradient, double dt_stage,
+                                                 MixedCellBudget& budget) {
+  ownVolumeRatios(s, c, dt_stage * s.vol_c(c) * trace(gradient), budget.own_ratio);
+  const Vec3 v0 = loadVec3(s.v_c0, c);
+  budget.dissipation = s.m_c(c) * (e_new - (s.E_c0(c) - 0.5 * dot(v0, v0)));
+  for (int k = 0; k < s.n_materials; ++k) {
+    const double alpha = s.alpha_ck(c, k);
+    if (!(alpha > 0.0)) continue;
+    budget.present_mass += s.m_ck(c, k);
+    if (s.materials(k).eos != EosKind::IdealGas) {
+      budget.condensed_mass += s.m_ck(c, k);
+    } else if (s.e_ck0(c, k) > 0.0) {
+      budget.gas_heat += s.m_ck(c, k) * s.e_ck0(c, k);
+    }
+    if (alpha >= s.alpha_trace) {
+      const Mat3 gradient_k =
+          materialGradient(s, c, k, true, gradient, budget.own_ratio[k], dt_stage);
+      budget.dissipation -= materialWork(s, c, k, gradient_k, budget.own_ratio[k], dt_stage);
+    }
+  }
+}
+
+}  // namespace detail
+
+// The materials of one cell over the stage (DESIGN §3-4), given the cell's new
+// specific internal energy e_new = E - |V|^2/2:
+// - internal energies: a pure cell's material takes e_new; in a mixed cell
+//   m^k (e^k - e^k,n) = W^k + share^k D (detail::dissipationShare), which
+//   sums to the cell's change; a trace (State::alpha_trace) does no work but
+//   takes its share of D, and so does a trace by mass (kMassTrace);
+// - hypo-elastic deviators: objective Jaumann update of S^k with L, then
+//   radial return (the plastic work is already in the total energy);
+// - Neo-Hookean B^k = F B^k,n F^T (SPD kept), stretched along a solid body's
+//   interface normal to its own volume ratio.
+// A trace's deviator is not driven by the cell's strain rate (it has no say in
+// the stress): it keeps its value until it is a material again.
 KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, const Vec3View& x_n,
                                             const State& s, double dt_stage, Index c,
                                             double e_new) {
@@ -447,123 +581,37 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
   if (!mixed && s.materials(last).strength == StrengthKind::None) return;
   const Mat3 gradient = velocityGradient(cell_nodes, s, c);
   const double threshold = mixed ? s.alpha_trace : 0.0;
-  // W^k = dt v (-p^k share^k tr L + alpha^k S^k : L), v the stage-start volume
-  // of L's definition
-  const double volume = s.vol_c(c);
-  // masses of the present materials, of the condensed ones (not ideal gases:
-  // their internal energy may go negative, in tension), and the gases'
-  // positive internal energy
-  double dissipation = 0.0, present_mass = 0.0, condensed_mass = 0.0, gas_heat = 0.0;
-  double de_cell = 0.0;
-  double weight_sum = 0.0;  // compressibility weights of the step start
-  for (int k = 0; k < s.n_materials && mixed; ++k) {
-    if (s.alpha_ck(c, k) > 0.0) weight_sum += s.w_ck0(c, k);
-  }
-  auto volumeShare = [&](int k) {
-    return weight_sum > 0.0 ? s.w_ck0(c, k) / weight_sum : s.alpha_ck(c, k);
-  };
-  // W^k = -p^k dV^k + dt v alpha^k S^k : L, with material k's volume change
-  // dV^k = share^k dt v tr L + relax^k as shareVolumeChange makes it, and
-  // like it never below kMinVolumeKept of the start volume: the pdV work
-  // stops where the volume does. (Charged share^k dt v tr L whatever its own
-  // volume, a gas at alpha ~ 1e-3 in a compressing aluminium cell took the
-  // whole cell's compression, ten times its volume per step, and its energy
-  // grew by 1 + (gamma - 1) 10 per step: 4e8 J/kg in the `ball`, whose time
-  // step it cut 30-fold. What the cap leaves out goes to D, shared by mass.)
-  const double volume_change = dt_stage * volume * trace(gradient);
-  double own_ratio[kMaxMaterials];  // each material's volume, end over start of step
-  double relax[kMaxMaterials] = {};
-  if (mixed) relaxationVolumes(s, c, relax);
-  for (int k = 0; k < s.n_materials && mixed; ++k) {
-    if (!(s.alpha_ck(c, k) > 0.0)) continue;
-    const double start_volume = s.alpha_ck0(c, k) * s.vol_c0(c);
-    const double own_change = volumeShare(k) * volume_change + relax[k];
-    own_ratio[k] = own_change < -(1.0 - kMinVolumeKept) * start_volume
-                       ? kMinVolumeKept
-                       : 1.0 + own_change / start_volume;
-  }
-  // A Neo-Hookean body's velocity gradient (isSolidBody, geometry.hpp): the
-  // cell's, plus the normal stretch rate that makes its volume rate its own.
-  // The gas beside it takes the cell's compression; the solid stretches
-  // along n as much as its volume share and pressure relaxation say, and its
-  // B (below) and its stress power see it.
-  auto materialGradient = [&](int k) {
-    Vec3 n;
-    if (!(mixed && isSolidBody(s, c, k, n))) return gradient;
-    Mat3 own = gradient;
-    const double own_rate = (own_ratio[k] - 1.0) / dt_stage;
-    addOuter(own, own_rate - trace(gradient), n, n);
-    return own;
-  };
-  auto materialWork = [&](int k) {
-    if (s.m_ck(c, k) < kMassTrace * s.m_c(c)) return 0.0;
-    const double start_volume = s.alpha_ck0(c, k) * s.vol_c0(c);
-    return -s.p_ck(c, k) * (own_ratio[k] - 1.0) * start_volume +
-           dt_stage * volume * stressPower(s, c, k, materialGradient(k), 0.0);
-  };
-  if (mixed) {
-    const Vec3 v0 = loadVec3(s.v_c0, c);
-    de_cell = e_new - (s.E_c0(c) - 0.5 * dot(v0, v0));
-    dissipation = s.m_c(c) * de_cell;
-    for (int k = 0; k < s.n_materials; ++k) {
-      const double alpha = s.alpha_ck(c, k);
-      if (!(alpha > 0.0)) continue;
-      present_mass += s.m_ck(c, k);
-      if (s.materials(k).eos != EosKind::IdealGas) {
-        condensed_mass += s.m_ck(c, k);
-      } else if (s.e_ck0(c, k) > 0.0) {
-        gas_heat += s.m_ck(c, k) * s.e_ck0(c, k);
-      }
-      if (alpha >= threshold) dissipation -= materialWork(k);
-    }
-  }
+  detail::MixedCellBudget budget;
+  if (mixed) detail::mixedCellBudget(s, c, e_new, gradient, dt_stage, budget);
   bool deformation_known = false;
   Mat3 deformation = zeroMat();
   for (int k = 0; k < s.n_materials; ++k) {
     const double alpha = s.alpha_ck(c, k);
     if (!(alpha > 0.0)) continue;
     const bool trace = alpha < threshold;
+    const double own_ratio = mixed ? budget.own_ratio[k] : 1.0;
     if (mixed) {
-      // A trace does no work (it has no say in the stress).
-      // (plus -p^k relax^k, the work of the pressure relaxation of
-      // shareVolumeChange on its own volume: irreversible, sum_k p^k relax^k
-      // >= 0 goes to D)
-      const double work = trace ? 0.0 : materialWork(k);
-      // D >= 0 is shared by mass, traces included (the same specific change
-      // for all), not by volume fraction as DESIGN §3 says: it is kinetic
-      // energy of the cell's one velocity turned into heat, and the mass
-      // carries it (as in the remap's kinetic-energy fix). Shared by volume,
-      // the gas beside a solid got half the heat of the solid's impact for
-      // 1e-9 of the mass (the `ball`'s near-vacuum gas reached 1e14 J/kg).
-      // D < 0 is no heat but an error of the second-order corner velocities
-      // (of order aL |dV|^2 dt / h, dV the velocity jump across the cell,
-      // hundreds of J/kg where the `ball`'s aluminium is torn from the gas
-      // at 1000 m/s), which a gas cannot afford below zero energy. It goes
-      // to the condensed materials by mass (their energy may go negative,
-      // in tension) and only without them to the gases, in proportion to
-      // their internal energies (the same relative cooling, none below zero
-      // while the cell's internal energy is positive).
-      const bool condensed = s.materials(k).eos != EosKind::IdealGas;
-      double share = s.m_ck(c, k) / present_mass;
-      if (dissipation < 0.0 && condensed_mass > 0.0) {
-        share = condensed ? s.m_ck(c, k) / condensed_mass : 0.0;
-      } else if (dissipation < 0.0 && gas_heat > 0.0) {
-        share = s.e_ck0(c, k) > 0.0 ? s.m_ck(c, k) * s.e_ck0(c, k) / gas_heat : 0.0;
-      }
-      s.e_ck(c, k) = s.e_ck0(c, k) + (work + share * dissipation) / s.m_ck(c, k);
+      const double work =
+          trace
+              ? 0.0
+              : detail::materialWork(
+                    s, c, k, detail::materialGradient(s, c, k, true, gradient, own_ratio, dt_stage),
+                    own_ratio, dt_stage);
+      const double share = detail::dissipationShare(s, c, k, budget);
+      s.e_ck(c, k) = s.e_ck0(c, k) + (work + share * budget.dissipation) / s.m_ck(c, k);
     }
     const MaterialParams& material = s.materials(k);
     if (trace) {
-      // A trace's deviator is not driven by the cell's strain rate (it has no
-      // say in the stress); it keeps its value until it is a material again.
       if (material.strength == StrengthKind::HypoElastic) {
         storeSym(s.S_ck, c, k, loadSym(s.S_ck0, c, k));
       } else if (material.strength == StrengthKind::NeoHookean) {
         storeSym(s.B_ck, c, k, loadSym(s.B_ck0, c, k));
       }
     } else if (material.strength == StrengthKind::HypoElastic) {
+      const Mat3 gradient_k =
+          detail::materialGradient(s, c, k, mixed, gradient, own_ratio, dt_stage);
       const SymMat3 trial =
-          jaumannUpdate(loadSym(s.S_ck0, c, k), materialGradient(k), material.mu, dt_stage);
+          jaumannUpdate(loadSym(s.S_ck0, c, k), gradient_k, material.mu, dt_stage);
       storeSym(s.S_ck, c, k, radialReturn(trial, material.yield_stress).S);
     } else if (material.strength == StrengthKind::NeoHookean) {
       if (!deformation_known) deformation = stageDeformation(cell_nodes, x_n, s, c);
@@ -573,7 +621,7 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
       if (mixed && isSolidBody(s, c, k, n)) {
         // stretched along n to its own volume ratio: det(F_s) = J^k
         Mat3 normal_stretch = identityMat();
-        addOuter(normal_stretch, own_ratio[k] / det(deformation) - 1.0, n, n);
+        addOuter(normal_stretch, own_ratio / det(deformation) - 1.0, n, n);
         own = normal_stretch * deformation;
       }
       storeSym(s.B_ck, c, k, pushForward(own, loadSym(s.B_ck0, c, k)));

@@ -21,13 +21,9 @@ struct LeastSquares {
   // the others: a direction without neighbours (a one-cell-thick slab, a 1D
   // bar) gets a zero gradient. The matrix is factored as L D L^T and a pivot
   // below kDegeneratePivot of the trace is dropped (D^+), with its column of
-  // L. Why not a small regularisation (1e-12 tr, as before): in a slab the
-  // neighbours' centroids are not exactly coplanar (round-off, and then a
-  // twist of 1e-9 of a cell between the top and bottom nodes' velocities),
-  // and sum(dpsi dz) / (1e-12 tr) made a z-gradient of alpha a hundred times
-  // its in-plane one. The limiter then zeroed the whole gradient (the
-  // interfaces of taylor, shell and ball were remapped at first order) and
-  // the interface normal -grad alpha / |grad alpha| pointed along z.
+  // L. Not a small regularisation: a slab's neighbour centroids are coplanar
+  // only to round-off, and a regularised z-gradient grows to many times the
+  // in-plane one (docs/method.md §2.1).
   KOKKOS_INLINE_FUNCTION SymMat3 solver() const {
     constexpr double kDegeneratePivot = 1e-8;
     const SymMat3& m = normal_matrix;
@@ -116,7 +112,7 @@ KOKKOS_INLINE_FUNCTION double inner(const Vec3& a, const Vec3& b) {
 }
 
 // Frame-independent limiter of a vector or tensor field psi (DESIGN §5 for a
-// field that is not a scalar; README, Numerical method). At each vertex p the
+// field that is not a scalar; docs/method.md §2.3). At each vertex p the
 // unlimited excursion delta_p = G d_p (G the least-squares gradient,
 // d_p = x_p - x_c) is measured against the jumps j = psi_nb - psi_c projected
 // on it (Frobenius inner product ":"), over the face neighbours and, with

@@ -160,6 +160,92 @@ inline void remapDensities(const State& state, const RemapLayout& layout,
       });
 }
 
+namespace detail {
+
+// The face-neighbour stencil of a cell's least-squares gradients: neighbour
+// ids (-1: none; no ghost, the gradient is one-sided at the boundary), their
+// centroid offsets and the pseudo-inverse of the normal matrix.
+struct GradientStencil {
+  Index nb[6];
+  Vec3 offset[6];
+  SymMat3 solver;
+};
+
+// Limited gradient of column v's primitive (DESIGN §5: Barth-Jespersen,
+// compressive beta for the volume fractions), and for a volume fraction the
+// interface normal -grad alpha / |grad alpha| of the next Lagrangian steps
+// (unlimited: the limiter scales the gradient, and may zero it). A
+// neighbour without the material counts as "no change".
+template <class Normals>
+KOKKOS_FORCEINLINE_FUNCTION void limitedColumnGradient(
+    const RemapLayout& layout, const RemapFields& fields, const Normals& interface_normal, Index c,
+    int v, const GradientStencil& stencil, const Vec3 vertex[8], double beta_alpha, bool limit) {
+  const double center = fields.primitive(c, v);
+  Bounds bounds(center);
+  Vec3 rhs{0.0, 0.0, 0.0};
+  for (int f = 0; f < 6; ++f) {
+    const Index nb = stencil.nb[f];
+    if (nb < 0 || !layout.hasPrimitive(fields.density, nb, v)) continue;
+    const double value = fields.primitive(nb, v);
+    rhs += (value - center) * stencil.offset[f];
+    bounds.include(value);
+  }
+  const Vec3 grad = stencil.solver * rhs;
+  if (v < layout.n_materials && c < Index(interface_normal.extent(0))) {
+    const double length = math::sqrt(dot(grad, grad));
+    const Vec3 normal = length > 0.0 ? (-1.0 / length) * grad : Vec3{0.0, 0.0, 0.0};
+    interface_normal(c, v, 0) = normal.x;
+    interface_normal(c, v, 1) = normal.y;
+    interface_normal(c, v, 2) = normal.z;
+  }
+  VertexExcursion excursion;
+  for (int p = 0; p < 8; ++p) excursion.include(dot(grad, vertex[p]));
+  const double beta = v < layout.n_materials ? beta_alpha : 1.0;
+  const double limiter = limit ? cellLimiter(excursion, center, bounds, beta) : 1.0;
+  fields.gradient(c, v, 0) = limiter * grad.x;
+  fields.gradient(c, v, 1) = limiter * grad.y;
+  fields.gradient(c, v, 2) = limiter * grad.z;
+}
+
+// Kinetic-energy limit of the velocity slopes where a gas is present
+// (docs/method.md §5.6): cut into parcels that follow the linear velocity, a
+// cell holds up to |grad V|^2 R^2 / 2 per unit mass more kinetic energy than
+// its mean velocity carries, which the kinetic-energy fix takes from the
+// internal energy, and a gas cannot go below zero (the `ball`'s near-vacuum
+// wake did). So |grad V| R <= sqrt(e_gas); solids may cool below zero
+// (tension).
+template <class MaterialTable>
+KOKKOS_FORCEINLINE_FUNCTION void limitVelocitySlopesByGasEnergy(const RemapLayout& layout,
+                                                                const RemapFields& fields,
+                                                                const MaterialTable& materials,
+                                                                Index c, double reach2) {
+  const auto& q = fields.density;
+  double gas_energy = 1e300;
+  for (int k = 0; k < layout.n_materials; ++k) {
+    const double alpha = q(c, layout.alpha(k)), mass = q(c, layout.mass(k));
+    if (!(alpha > 0.0 && mass > 0.0) || materials(k).eos != EosKind::IdealGas) continue;
+    const double e = q(c, layout.energy(k)) / mass;
+    gas_energy = e < gas_energy ? e : gas_energy;
+  }
+  if (gas_energy == 1e300) return;
+  double slope2 = 0.0;
+  for (int d = 0; d < 3; ++d) {
+    for (int i = 0; i < 3; ++i) {
+      const double g = fields.gradient(c, layout.momentum(d), i);
+      slope2 += g * g;
+    }
+  }
+  const double allowed2 = gas_energy > 0.0 ? gas_energy / reach2 : 0.0;
+  if (slope2 > allowed2) {
+    const double scale = math::sqrt(allowed2 / slope2);
+    for (int d = 0; d < 3; ++d) {
+      for (int i = 0; i < 3; ++i) fields.gradient(c, layout.momentum(d), i) *= scale;
+    }
+  }
+}
+
+}  // namespace detail
+
 // Limited least-squares gradients (DESIGN §5) on the Lagrangian mesh, stored
 // already multiplied by their limiter: psi(x) = psi_c + grad . (x - x_c).
 // Also stores each cell's reach, the largest distance from its centroid to a
@@ -168,10 +254,6 @@ inline void remapDensities(const State& state, const RemapLayout& layout,
 // (State::n_ck, for the stress relaxation of mixed cells, geometry.hpp).
 inline void remapGradients(const Mesh& mesh, const State& state, const RemapLayout& layout,
                            const RemapControls& controls, const RemapFields& fields) {
-  const auto q = fields.density;
-  const auto w = fields.primitive;
-  const auto gradient = fields.gradient;
-  const auto reach = fields.reach;
   const auto cell_nodes = mesh.cell_nodes;
   const auto neighbors = mesh.cell_neighbors;
   const auto x_n = mesh.x_n;
@@ -184,97 +266,289 @@ inline void remapGradients(const Mesh& mesh, const State& state, const RemapLayo
       "lagremap::remap::gradients", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
       KOKKOS_LAMBDA(const Index c) {
         const Vec3 centroid = loadVec3(x_c, c);
-        Index nb[6];
-        Vec3 offset[6];
+        detail::GradientStencil stencil;
         LeastSquares lsq;
         for (int f = 0; f < 6; ++f) {
-          nb[f] = neighbors(c, f);
-          if (nb[f] < 0) continue;  // no ghost: the gradient is one-sided at the boundary
-          offset[f] = loadVec3(x_c, nb[f]) - centroid;
-          lsq.addOffset(offset[f]);
+          stencil.nb[f] = neighbors(c, f);
+          if (stencil.nb[f] < 0) continue;
+          stencil.offset[f] = loadVec3(x_c, stencil.nb[f]) - centroid;
+          lsq.addOffset(stencil.offset[f]);
         }
-        const SymMat3 solver = lsq.solver();
+        stencil.solver = lsq.solver();
         Vec3 vertex[8];
         double reach2 = 0.0;
         for (int p = 0; p < 8; ++p) {
           vertex[p] = loadVec3(x_n, cell_nodes(c, p)) - centroid;
           reach2 = dot(vertex[p], vertex[p]) > reach2 ? dot(vertex[p], vertex[p]) : reach2;
         }
-        reach(c) = math::sqrt(reach2);
+        fields.reach(c) = math::sqrt(reach2);
         // A mixed cell's rho^k, e^k, V and tensors are swept constant
         // (remapUpdate): only its volume fractions need a gradient.
         int materials_present = 0;
-        for (int k = 0; k < layout.n_materials; ++k)
-          materials_present += q(c, layout.alpha(k)) > 0.0;
+        for (int k = 0; k < layout.n_materials; ++k) {
+          materials_present += fields.density(c, layout.alpha(k)) > 0.0;
+        }
         const int reconstructed_end =
             materials_present > 1 ? layout.n_materials : layout.n_variables;
         for (int v = 0; v < layout.n_variables; ++v) {
           if (!layout.reconstructed(v)) continue;
-          if (v >= reconstructed_end || !layout.hasPrimitive(q, c, v)) {
-            for (int d = 0; d < 3; ++d) gradient(c, v, d) = 0.0;
+          if (v >= reconstructed_end || !layout.hasPrimitive(fields.density, c, v)) {
+            for (int d = 0; d < 3; ++d) fields.gradient(c, v, d) = 0.0;
             continue;
           }
-          const double center = w(c, v);
-          Bounds bounds(center);
-          Vec3 rhs{0.0, 0.0, 0.0};
-          for (int f = 0; f < 6; ++f) {
-            // a neighbour without the material counts as "no change"
-            if (nb[f] < 0 || !layout.hasPrimitive(q, nb[f], v)) continue;
-            const double value = w(nb[f], v);
-            rhs += (value - center) * offset[f];
-            bounds.include(value);
-          }
-          const Vec3 grad = solver * rhs;
-          if (v < layout.n_materials && c < Index(interface_normal.extent(0))) {
-            // the interface normal of the next Lagrangian steps (unlimited:
-            // the limiter scales the gradient, and may zero it)
-            const double length = math::sqrt(dot(grad, grad));
-            const Vec3 normal = length > 0.0 ? (-1.0 / length) * grad : Vec3{0.0, 0.0, 0.0};
-            interface_normal(c, v, 0) = normal.x;
-            interface_normal(c, v, 1) = normal.y;
-            interface_normal(c, v, 2) = normal.z;
-          }
-          VertexExcursion excursion;
-          for (int p = 0; p < 8; ++p) excursion.include(dot(grad, vertex[p]));
-          const double beta = v < layout.n_materials ? beta_alpha : 1.0;
-          const double limiter = limit ? cellLimiter(excursion, center, bounds, beta) : 1.0;
-          gradient(c, v, 0) = limiter * grad.x;
-          gradient(c, v, 1) = limiter * grad.y;
-          gradient(c, v, 2) = limiter * grad.z;
+          detail::limitedColumnGradient(layout, fields, interface_normal, c, v, stencil, vertex,
+                                        beta_alpha, limit);
         }
-        // Kinetic-energy limit of the velocity slopes where a gas is present:
-        // cut into parcels that follow the linear velocity, a cell holds up
-        // to |grad V|^2 R^2 / 2 per unit mass more kinetic energy than its
-        // mean velocity carries, which the kinetic-energy fix takes from the
-        // internal energy (the parcels that stay behind). A gas cannot go
-        // below zero: in the `ball`'s wake, near-vacuum at 24 J/kg between
-        // cells moving at 300 and 970 m/s did. So |grad V| R <= sqrt(e_gas)
-        // (solids may cool below zero: tension).
-        if (!limit) return;
-        double gas_energy = 1e300;
-        for (int k = 0; k < layout.n_materials; ++k) {
-          const double alpha = q(c, layout.alpha(k)), mass = q(c, layout.mass(k));
-          if (!(alpha > 0.0 && mass > 0.0) || materials(k).eos != EosKind::IdealGas) continue;
-          const double e = q(c, layout.energy(k)) / mass;
-          gas_energy = e < gas_energy ? e : gas_energy;
-        }
-        if (gas_energy == 1e300) return;
-        double slope2 = 0.0;
-        for (int d = 0; d < 3; ++d) {
-          for (int i = 0; i < 3; ++i) {
-            const double g = gradient(c, layout.momentum(d), i);
-            slope2 += g * g;
-          }
-        }
-        const double allowed2 = gas_energy > 0.0 ? gas_energy / reach2 : 0.0;
-        if (slope2 > allowed2) {
-          const double scale = math::sqrt(allowed2 / slope2);
-          for (int d = 0; d < 3; ++d) {
-            for (int i = 0; i < 3; ++i) gradient(c, layout.momentum(d), i) *= scale;
-          }
-        }
+        if (limit) detail::limitVelocitySlopesByGasEnergy(layout, fields, materials, c, reach2);
       });
 }
+
+namespace detail {
+
+// Range of each material's density and specific energy over the cells it
+// comes from (the cell and its upwind cells): the bounds of the clean-up.
+struct SourceRange {
+  double rho_lo[kMaxMaterials], rho_hi[kMaxMaterials], e_lo[kMaxMaterials], e_hi[kMaxMaterials];
+
+  KOKKOS_INLINE_FUNCTION explicit SourceRange(int n_materials) {
+    for (int m = 0; m < n_materials; ++m) {
+      rho_lo[m] = e_lo[m] = 1e300;
+      rho_hi[m] = e_hi[m] = -1e300;
+    }
+  }
+  KOKKOS_FORCEINLINE_FUNCTION void include(const RemapLayout& layout, const RemapFields& fields,
+                                           Index cell, int m) {
+    if (!layout.hasPrimitive(fields.density, cell, layout.mass(m))) return;
+    const double rho = fields.primitive(cell, layout.mass(m));
+    const double e = fields.primitive(cell, layout.energy(m));
+    rho_lo[m] = rho < rho_lo[m] ? rho : rho_lo[m];
+    rho_hi[m] = rho > rho_hi[m] ? rho : rho_hi[m];
+    e_lo[m] = e < e_lo[m] ? e : e_lo[m];
+    e_hi[m] = e > e_hi[m] ? e : e_hi[m];
+  }
+};
+
+// A region swept across the outer boundary takes the cell's own state (zero
+// gradient); what it carries is booked as crossed by the owner of the cell.
+KOKKOS_FORCEINLINE_FUNCTION void fluxOuterRegion(const RemapLayout& layout,
+                                                 const RemapFields& fields, Index c, double dvol,
+                                                 bool owned, double integral[],
+                                                 RemapBoundaryFlux& crossed) {
+  const auto& q = fields.density;
+  for (int v = 0; v < layout.n_variables; ++v) integral[v] += dvol * q(c, v);
+  double mass = 0.0, energy = dvol * q(c, layout.kinetic());
+  for (int m = 0; m < layout.n_materials; ++m) {
+    mass += dvol * q(c, layout.mass(m));
+    energy += dvol * q(c, layout.energy(m));
+  }
+  if (owned) {  // (a ghost's crossing is booked by its owner)
+    crossed.v[0] += mass;
+    for (int d = 0; d < 3; ++d) crossed.v[1 + d] += dvol * q(c, layout.momentum(d));
+    crossed.v[4] += energy;
+  }
+}
+
+// Lever limit (docs/method.md §5.2): the slopes are evaluated at the region's
+// centroid x_up + lever / dV. A region that sweeps almost no volume but has a
+// first moment (a twisting face) puts that point arbitrarily far away, where
+// the reconstruction extrapolates without bound; it is kept within the
+// upwind cell's reach. Both sides of the face compute the same scale.
+KOKKOS_FORCEINLINE_FUNCTION Vec3 limitedLever(const Vec3& lever, double reach_up, double dvol) {
+  const double lever_norm = math::sqrt(dot(lever, lever));
+  const double lever_max = reach_up * (dvol < 0.0 ? -dvol : dvol);
+  return lever_norm > lever_max ? (lever_max / lever_norm) * lever : lever;
+}
+
+// A parcel's specific energy stays inside the range of the two cells sharing
+// the face (a positivity guard: within the reach the linear extrapolation may
+// still pass the face, which a material at 1 J/kg beside one at 1e6 J/kg
+// cannot afford). `other`: the downwind cell.
+KOKKOS_FORCEINLINE_FUNCTION double boundedEnergyFlux(const RemapLayout& layout,
+                                                     const RemapFields& fields, Index other, int m,
+                                                     double mass_flux, double e_up,
+                                                     double energy_flux) {
+  double e_lo_face = e_up, e_hi_face = e_up;
+  const double mass_other = fields.density(other, layout.mass(m));
+  if (fields.density(other, layout.alpha(m)) > 0.0 && mass_other > 0.0) {
+    const double e_other = fields.primitive(other, layout.energy(m));
+    e_lo_face = e_other < e_lo_face ? e_other : e_lo_face;
+    e_hi_face = e_other > e_hi_face ? e_other : e_hi_face;
+  }
+  const double bound_a = mass_flux * e_lo_face, bound_b = mass_flux * e_hi_face;
+  const double lowest = bound_a < bound_b ? bound_a : bound_b;
+  const double highest = bound_a < bound_b ? bound_b : bound_a;
+  return energy_flux < lowest ? lowest : (energy_flux > highest ? highest : energy_flux);
+}
+
+// Upwind flux of one interior face-side region of volume dvol and lever
+// M - x_up dV (DESIGN §5; docs/method.md §5.3-5.6): each material's volume second
+// order, its mass and energy by the product rule on the upwind alpha^k,
+// rho^k, e^k, its tensor on the volume flux; then momentum and kinetic energy
+// as a rigid parcel of the mass flux at the upwind velocity at the region's
+// centroid, V_r = V_up + grad V . lever / dV. From a mixed upwind cell rho^k,
+// e^k and V are taken constant (their slopes would carry the cell's whole
+// (alpha rho)_up into a region that may hold a sliver of the material).
+KOKKOS_FORCEINLINE_FUNCTION void fluxInteriorRegion(const RemapLayout& layout,
+                                                    const RemapFields& fields, Index c, Index nb,
+                                                    Index up, double dvol, const Vec3& lever,
+                                                    bool limit, double integral[],
+                                                    SourceRange& range) {
+  const auto& q = fields.density;
+  const auto& w = fields.primitive;
+  auto slope = [&](int v) {  // limited gradient of column v's primitive . lever
+    return fields.gradient(up, v, 0) * lever.x + fields.gradient(up, v, 1) * lever.y +
+           fields.gradient(up, v, 2) * lever.z;
+  };
+  int materials_up = 0;
+  for (int m = 0; m < layout.n_materials; ++m) materials_up += q(up, layout.alpha(m)) > 0.0;
+  const bool pure_up = materials_up == 1;
+  double mass_flux_total = 0.0;
+  for (int m = 0; m < layout.n_materials; ++m) {
+    const int a = layout.alpha(m);
+    const double alpha_flux = dvol * q(up, a) + slope(a);
+    integral[a] += alpha_flux;
+    const double alpha_up = q(up, a);
+    const double mass_up = q(up, layout.mass(m));
+    if (!(alpha_up > 0.0 && mass_up > 0.0)) continue;  // nothing of m to carry
+    if (up != c) range.include(layout, fields, up, m);
+    const double rho_up_m = w(up, layout.mass(m));
+    const double e_up = w(up, layout.energy(m));
+    const double mass_flux =
+        alpha_flux * rho_up_m + (pure_up ? alpha_up * slope(layout.mass(m)) : 0.0);
+    integral[layout.mass(m)] += mass_flux;
+    double energy_flux = mass_flux * e_up + (pure_up ? mass_up * slope(layout.energy(m)) : 0.0);
+    if (limit) {
+      energy_flux =
+          boundedEnergyFlux(layout, fields, up == c ? nb : c, m, mass_flux, e_up, energy_flux);
+    }
+    integral[layout.energy(m)] += energy_flux;
+    mass_flux_total += mass_flux;
+    const int column = layout.tensor_column[m];
+    if (column < 0) continue;
+    for (int i = 0; i < 6; ++i) {
+      integral[column + i] +=
+          alpha_flux * w(up, column + i) + (pure_up ? alpha_up * slope(column + i) : 0.0);
+    }
+  }
+  // dm V_r and dm |V_r|^2 / 2: a new velocity is a weighted mean of limited
+  // values, and the kinetic-energy fix is the same in every frame.
+  const double inv_dvol = dvol != 0.0 ? 1.0 / dvol : 0.0;
+  double kinetic_flux = 0.0;
+  for (int d = 0; d < 3; ++d) {
+    const int column = layout.momentum(d);
+    const double v_region = w(up, column) + (pure_up ? slope(column) * inv_dvol : 0.0);
+    integral[column] += mass_flux_total * v_region;
+    kinetic_flux += mass_flux_total * 0.5 * v_region * v_region;
+  }
+  integral[layout.kinetic()] += kinetic_flux;
+}
+
+// The new material state of a cell of volume `volume` from its integrals
+// (docs/method.md §5.7): volume fractions clipped to [0, 1]; a
+// material whose volume and mass fluxes nearly cancel keeps its density in
+// the range of its sources (by its volume fraction) and its specific energy
+// too (the excess internal energy goes to the heaviest material); traces
+// below alpha_floor join the main material; the fractions are renormalised.
+// Nothing is lost: mass and energy only move between materials.
+template <class MaterialTable>
+KOKKOS_FORCEINLINE_FUNCTION void cleanUpMaterials(const RemapLayout& layout,
+                                                  const MaterialTable& materials,
+                                                  const double integral[], double volume,
+                                                  const SourceRange& range, double alpha_floor,
+                                                  double alpha[], double mass[],
+                                                  double internal[]) {
+  const int n_materials = layout.n_materials;
+  int main_material = 0, heaviest = 0;
+  for (int k = 0; k < n_materials; ++k) {
+    const double fraction = integral[layout.alpha(k)] / volume;
+    alpha[k] = fraction < 0.0 ? 0.0 : (fraction > 1.0 ? 1.0 : fraction);
+    mass[k] = integral[layout.mass(k)];
+    internal[k] = integral[layout.energy(k)];
+    if (alpha[k] > alpha[main_material]) main_material = k;
+    if (mass[k] > mass[heaviest]) heaviest = k;
+  }
+  for (int k = 0; k < n_materials; ++k) {
+    if (!(alpha[k] > 0.0 && mass[k] > 0.0) || !(range.rho_hi[k] >= range.rho_lo[k])) continue;
+    const double rho = mass[k] / (alpha[k] * volume);
+    if (rho < range.rho_lo[k] || rho > range.rho_hi[k]) {
+      alpha[k] = mass[k] / ((rho < range.rho_lo[k] ? range.rho_lo[k] : range.rho_hi[k]) * volume);
+      alpha[k] = alpha[k] > 1.0 ? 1.0 : alpha[k];
+    }
+    // (the heaviest: the `ball`'s near-vacuum gas cannot take an aluminium
+    // trace's excess, which took it to 1e6 J/kg or below zero by volume)
+    if (k == heaviest) continue;
+    const double e = internal[k] / mass[k];
+    if (e < range.e_lo[k] || e > range.e_hi[k]) {
+      const double bounded = mass[k] * (e < range.e_lo[k] ? range.e_lo[k] : range.e_hi[k]);
+      internal[heaviest] += internal[k] - bounded;
+      internal[k] = bounded;
+    }
+  }
+  double alpha_sum = 0.0;
+  for (int k = 0; k < n_materials; ++k) {
+    if (k == main_material) continue;
+    // A trace (or a round-off negative mass) is not a material state; but a
+    // trace whose negative energy (a solid fragment in tension) would take a
+    // gas below zero stays a material until it can.
+    const bool takes_gas_below_zero =
+        internal[k] < 0.0 && internal[main_material] + internal[k] < 0.0 &&
+        materials(main_material).eos == EosKind::IdealGas && alpha[k] > 0.0;
+    if ((alpha[k] <= alpha_floor && !takes_gas_below_zero) || !(mass[k] > 0.0)) {
+      mass[main_material] += mass[k];
+      internal[main_material] += internal[k];
+      alpha[k] = 0.0;
+      mass[k] = 0.0;
+      internal[k] = 0.0;
+    }
+    alpha_sum += alpha[k];
+  }
+  alpha_sum += alpha[main_material];
+  for (int k = 0; k < n_materials; ++k) alpha[k] /= alpha_sum;
+}
+
+// Velocity, the kinetic-energy fix and the stored state of cell c: the
+// remapped kinetic energy is kept and its difference to |m V|^2 / 2m goes to
+// the internal energies by mass fraction, so the total energy is remapped
+// conservatively; each tensor is alpha^k T^k over the remapped alpha^k volume.
+KOKKOS_FORCEINLINE_FUNCTION void storeRemappedCell(const State& s, const RemapLayout& layout,
+                                                   Index c, const double integral[],
+                                                   const double alpha[], const double mass[],
+                                                   double internal[], bool kinetic_energy_fix) {
+  const int n_materials = layout.n_materials;
+  double cell_mass = 0.0;
+  for (int k = 0; k < n_materials; ++k) cell_mass += mass[k];
+  const Vec3 momentum{integral[layout.momentum(0)], integral[layout.momentum(1)],
+                      integral[layout.momentum(2)]};
+  const Vec3 velocity = (1.0 / cell_mass) * momentum;
+  const double kinetic_remapped = integral[layout.kinetic()];
+  const double kinetic_fix =
+      kinetic_energy_fix ? kinetic_remapped - 0.5 * dot(momentum, velocity) : 0.0;
+  double cell_internal = 0.0;
+  for (int k = 0; k < n_materials; ++k) {
+    internal[k] += (mass[k] / cell_mass) * kinetic_fix;
+    cell_internal += internal[k];
+  }
+  s.m_c(c) = cell_mass;
+  storeVec3(s.v_c, c, velocity);
+  s.E_c(c) = (cell_internal + 0.5 * dot(momentum, velocity)) / cell_mass;
+  for (int k = 0; k < n_materials; ++k) {
+    s.alpha_ck(c, k) = alpha[k];
+    s.m_ck(c, k) = mass[k];
+    s.e_ck(c, k) = alpha[k] > 0.0 ? internal[k] / mass[k] : 0.0;
+    const int column = layout.tensor_column[k];
+    if (column < 0) continue;
+    const double material_volume = integral[layout.alpha(k)];
+    const bool present = alpha[k] > 0.0 && material_volume > 0.0;
+    double t[6];
+    for (int i = 0; i < 6; ++i) t[i] = present ? integral[column + i] / material_volume : 0.0;
+    const bool hyper = s.materials(k).strength == StrengthKind::NeoHookean;
+    const SymMat3 tensor =
+        hyper && !present ? identitySym() : SymMat3{t[0], t[1], t[2], t[3], t[4], t[5]};
+    storeSym(hyper ? s.B_ck : s.S_ck, c, k, tensor);
+  }
+}
+
+}  // namespace detail
 
 // Sum of the upwind fluxes of the cell's 12 face-side regions, the new state on
 // the initial mesh, clean-up and kinetic-energy fix (DESIGN §5). Returns what
@@ -282,10 +556,6 @@ inline void remapGradients(const Mesh& mesh, const State& state, const RemapLayo
 inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state,
                                      const RemapLayout& layout, const RemapControls& controls,
                                      const RemapFields& fields, const SweptFaces& swept) {
-  const auto q = fields.density;
-  const auto w = fields.primitive;
-  const auto gradient = fields.gradient;
-  const auto reach = fields.reach;
   const auto neighbors = mesh.cell_neighbors;
   const auto owned = mesh.cell_owned;
   const auto s = state;
@@ -296,31 +566,14 @@ inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state,
   Kokkos::parallel_reduce(
       "lagremap::remap::fluxes_and_update", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
       KOKKOS_LAMBDA(const Index c, RemapBoundaryFlux& crossed) {
-        const int n_variables = layout.n_variables;
-        const int n_materials = layout.n_materials;
-        // --- integrals over the Lagrangian cell, then the fluxes
+        // integrals over the Lagrangian cell, then the fluxes of its regions
         double integral[kMaxRemapVariables];
         const double volume_lag = s.vol_c(c);
-        for (int v = 0; v < n_variables; ++v) integral[v] = q(c, v) * volume_lag;
-        // Range of each material's density and specific energy over the cells
-        // it comes from (this one and the upwind ones): the bounds of the
-        // clean-up below.
-        double rho_lo[kMaxMaterials], rho_hi[kMaxMaterials], e_lo[kMaxMaterials],
-            e_hi[kMaxMaterials];
-        for (int m = 0; m < n_materials; ++m) {
-          rho_lo[m] = e_lo[m] = 1e300;
-          rho_hi[m] = e_hi[m] = -1e300;
+        for (int v = 0; v < layout.n_variables; ++v) {
+          integral[v] = fields.density(c, v) * volume_lag;
         }
-        auto includeSource = [&](Index cell, int m) {
-          if (!layout.hasPrimitive(q, cell, layout.mass(m))) return;
-          const double rho = w(cell, layout.mass(m));
-          const double e = w(cell, layout.energy(m));
-          rho_lo[m] = rho < rho_lo[m] ? rho : rho_lo[m];
-          rho_hi[m] = rho > rho_hi[m] ? rho : rho_hi[m];
-          e_lo[m] = e < e_lo[m] ? e : e_lo[m];
-          e_hi[m] = e > e_hi[m] ? e : e_hi[m];
-        };
-        for (int m = 0; m < n_materials; ++m) includeSource(c, m);
+        detail::SourceRange range(layout.n_materials);
+        for (int m = 0; m < layout.n_materials; ++m) range.include(layout, fields, c, m);
         double volume = volume_lag;
         for (int f = 0; f < 6; ++f) {
           const Index nb = neighbors(c, f);
@@ -328,227 +581,29 @@ inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state,
             const Index r = sweptRegionId(c, f, side);
             const double dvol = swept.dvol_r(r);
             volume += dvol;
-            if (nb < 0) {
-              // Outer boundary: the swept region takes the cell's own state
-              // (zero gradient); nothing crosses a wall (dV = 0 there).
-              if (dvol == 0.0) continue;
-              for (int v = 0; v < n_variables; ++v) integral[v] += dvol * q(c, v);
-              double mass = 0.0, energy = dvol * q(c, layout.kinetic());
-              for (int m = 0; m < n_materials; ++m) {
-                mass += dvol * q(c, layout.mass(m));
-                energy += dvol * q(c, layout.energy(m));
-              }
-              if (owned(c)) {  // (a ghost's crossing is booked by its owner)
-                crossed.v[0] += mass;
-                for (int d = 0; d < 3; ++d) crossed.v[1 + d] += dvol * q(c, layout.momentum(d));
-                crossed.v[4] += energy;
+            if (nb < 0) {  // nothing crosses a wall (dV = 0 there)
+              if (dvol != 0.0) {
+                detail::fluxOuterRegion(layout, fields, c, dvol, owned(c), integral, crossed);
               }
               continue;
             }
             // A region of no volume carries nothing once its lever is limited
-            // (below): no flux, and it is no source of the clean-up bounds.
-            // (Unlimited, its first moment still carries the linear part.)
+            // (and is no source of the clean-up bounds); unlimited, its first
+            // moment still carries the linear part.
             if (dvol == 0.0 && limit) continue;
-            // Upwind cell: the one the region is taken from, the neighbour for
-            // the gained side; both sides of the face make the same choice
-            // (computeSweptFaces).
+            // upwind: the neighbour for the gained side, as on the other side
             const Index up = side == kGainedSide ? nb : c;
             Vec3 lever = loadVec3(swept.moment_r, r) - dvol * loadVec3(s.x_c, up);
-            // Lever limit: the slopes are evaluated at the region's centroid
-            // x_up + lever / dV, inside the upwind cell for a region the face
-            // sweeps through it. A region that sweeps almost no volume but
-            // has a first moment (a face that twists: inflow on one side,
-            // outflow on the other, one of them nearly empty) puts that point
-            // arbitrarily far away,
-            // where the reconstruction extrapolates without bound (next to
-            // gas at 1e6 J/kg: 1e6 J/kg with no mass into a cell at 1 J/kg,
-            // in the `ball`). The point is kept within the upwind cell's
-            // reach; both sides of the face compute the same scale.
-            if (limit) {
-              const double lever_norm = math::sqrt(dot(lever, lever));
-              const double lever_max = reach(up) * (dvol < 0.0 ? -dvol : dvol);
-              if (lever_norm > lever_max) lever = (lever_max / lever_norm) * lever;
-            }
-            auto slope = [&](int v) {  // limited gradient of column v's primitive . lever
-              return gradient(up, v, 0) * lever.x + gradient(up, v, 1) * lever.y +
-                     gradient(up, v, 2) * lever.z;
-            };
-            // From a mixed cell, rho^k, e^k and V are taken constant: their
-            // slope terms would carry the cell's whole (alpha rho)_up while
-            // the swept region may hold a sliver of the material only (a
-            // solid's energy slope added to a gas-side region that holds 1e-5
-            // of it gives that trace any energy at all).
-            int materials_up = 0;
-            for (int m = 0; m < n_materials; ++m) materials_up += q(up, layout.alpha(m)) > 0.0;
-            const bool pure_up = materials_up == 1;
-            // Materials: volume second order; mass and energy by the product
-            // rule on the upwind reconstructions alpha, rho^k, e^k.
-            double mass_flux_total = 0.0;
-            for (int m = 0; m < n_materials; ++m) {
-              const int a = layout.alpha(m);
-              const double alpha_flux = dvol * q(up, a) + slope(a);
-              integral[a] += alpha_flux;
-              const double alpha_up = q(up, a);
-              const double mass_up = q(up, layout.mass(m));
-              if (!(alpha_up > 0.0 && mass_up > 0.0)) continue;  // nothing of m to carry
-              if (up != c) includeSource(up, m);
-              const double rho_up_m = w(up, layout.mass(m));
-              const double e_up = w(up, layout.energy(m));
-              const double mass_flux =
-                  alpha_flux * rho_up_m + (pure_up ? alpha_up * slope(layout.mass(m)) : 0.0);
-              integral[layout.mass(m)] += mass_flux;
-              double energy_flux =
-                  mass_flux * e_up + (pure_up ? mass_up * slope(layout.energy(m)) : 0.0);
-              if (limit) {
-                // The parcel's specific energy stays inside the range of the
-                // two cells sharing the face (a positivity guard; for monotone
-                // data the reconstruction at the region's centroid is inside
-                // it anyway): within the reach, the linear extrapolation may
-                // still pass the face, which a material at 1 J/kg beside one
-                // at 1e6 J/kg cannot afford.
-                double e_lo_face = e_up, e_hi_face = e_up;
-                const Index other = up == c ? nb : c;
-                const double mass_other = q(other, layout.mass(m));
-                if (q(other, a) > 0.0 && mass_other > 0.0) {
-                  const double e_other = w(other, layout.energy(m));
-                  e_lo_face = e_other < e_lo_face ? e_other : e_lo_face;
-                  e_hi_face = e_other > e_hi_face ? e_other : e_hi_face;
-                }
-                const double bound_a = mass_flux * e_lo_face, bound_b = mass_flux * e_hi_face;
-                const double lowest = bound_a < bound_b ? bound_a : bound_b;
-                const double highest = bound_a < bound_b ? bound_b : bound_a;
-                energy_flux =
-                    energy_flux < lowest ? lowest : (energy_flux > highest ? highest : energy_flux);
-              }
-              integral[layout.energy(m)] += energy_flux;
-              mass_flux_total += mass_flux;
-              const int column = layout.tensor_column[m];
-              if (column < 0) continue;
-              // alpha^k T^k: the volume's flux times T^k, second order in a
-              // pure upwind cell (as rho^k and e^k above).
-              for (int i = 0; i < 6; ++i) {
-                integral[column + i] +=
-                    alpha_flux * w(up, column + i) + (pure_up ? alpha_up * slope(column + i) : 0.0);
-              }
-            }
-            // Momentum and kinetic energy ride on the mass flux dm as a rigid
-            // parcel moving at the upwind reconstruction of the velocity at
-            // the region's centroid, V_r = V_up + grad V . lever / dV:
-            // dm V_r and dm |V_r|^2 / 2. A new velocity is a weighted mean of
-            // limited values, exact for linear V at uniform density, and the
-            // kinetic-energy fix below is the same in every frame (what the
-            // parcels' own kinetic energies miss against the new momentum,
-            // of order dm |grad V . lever / dV|^2). The kinetic energy used to
-            // be swept first order, dm |V_up|^2 / 2, against this second-order
-            // momentum: off by dm V_up . grad V . lever / dV, ~100 J/kg per
-            // step in the `ball` moving at 1000 m/s, whose aluminium holds
-            // 18 J/kg, and negative.
-            const double inv_dvol = dvol != 0.0 ? 1.0 / dvol : 0.0;
-            double kinetic_flux = 0.0;
-            for (int d = 0; d < 3; ++d) {
-              const int column = layout.momentum(d);
-              const double v_region = w(up, column) + (pure_up ? slope(column) * inv_dvol : 0.0);
-              integral[column] += mass_flux_total * v_region;
-              kinetic_flux += mass_flux_total * 0.5 * v_region * v_region;
-            }
-            integral[layout.kinetic()] += kinetic_flux;
+            if (limit) lever = detail::limitedLever(lever, fields.reach(up), dvol);
+            detail::fluxInteriorRegion(layout, fields, c, nb, up, dvol, lever, limit, integral,
+                                       range);
           }
         }
-
-        // --- volume fractions: clip to [0, 1], renormalise; drop traces
         double alpha[kMaxMaterials], mass[kMaxMaterials], internal[kMaxMaterials];
-        double alpha_sum = 0.0;
-        int main_material = 0, heaviest = 0;
-        for (int k = 0; k < n_materials; ++k) {
-          const double fraction = integral[layout.alpha(k)] / volume;
-          alpha[k] = fraction < 0.0 ? 0.0 : (fraction > 1.0 ? 1.0 : fraction);
-          mass[k] = integral[layout.mass(k)];
-          internal[k] = integral[layout.energy(k)];
-          if (alpha[k] > alpha[main_material]) main_material = k;
-          if (mass[k] > mass[heaviest]) heaviest = k;
-        }
-        // A material's volume and mass fluxes come from different faces; where
-        // they nearly cancel (a cell emptying of a material), mass / volume and
-        // energy / mass lose all precision. Its density is kept inside the
-        // range of its sources by adjusting its volume fraction (renormalised
-        // below), its specific energy by handing the excess internal energy to
-        // the cell's main material: no mass or energy is lost.
-        for (int k = 0; k < n_materials; ++k) {
-          if (!(alpha[k] > 0.0 && mass[k] > 0.0) || !(rho_hi[k] >= rho_lo[k])) continue;
-          const double rho = mass[k] / (alpha[k] * volume);
-          if (rho < rho_lo[k] || rho > rho_hi[k]) {
-            alpha[k] = mass[k] / ((rho < rho_lo[k] ? rho_lo[k] : rho_hi[k]) * volume);
-            alpha[k] = alpha[k] > 1.0 ? 1.0 : alpha[k];
-          }
-          // The excess goes to the heaviest material: the near-vacuum gas
-          // of the `ball` (1e-5 kg/m^3 at 2.5 J/kg) holds 1e-4 of the
-          // energy of an aluminium trace that outweighs it, and took its
-          // excess to 1e6 J/kg or below zero when it received it by volume.
-          if (k == heaviest) continue;
-          const double e = internal[k] / mass[k];
-          if (e < e_lo[k] || e > e_hi[k]) {
-            const double bounded = mass[k] * (e < e_lo[k] ? e_lo[k] : e_hi[k]);
-            internal[heaviest] += internal[k] - bounded;
-            internal[k] = bounded;
-          }
-        }
-        for (int k = 0; k < n_materials; ++k) {
-          if (k == main_material) continue;
-          // A trace (or a round-off negative mass) is not a material state:
-          // its mass and energy join the main material, so nothing is lost;
-          // but a trace whose negative energy (a solid fragment in tension)
-          // would take a gas below zero stays a material until it can.
-          const bool takes_gas_below_zero =
-              internal[k] < 0.0 && internal[main_material] + internal[k] < 0.0 &&
-              s.materials(main_material).eos == EosKind::IdealGas && alpha[k] > 0.0;
-          if ((alpha[k] <= alpha_floor && !takes_gas_below_zero) || !(mass[k] > 0.0)) {
-            mass[main_material] += mass[k];
-            internal[main_material] += internal[k];
-            alpha[k] = 0.0;
-            mass[k] = 0.0;
-            internal[k] = 0.0;
-          }
-          alpha_sum += alpha[k];
-        }
-        alpha_sum += alpha[main_material];
-        for (int k = 0; k < n_materials; ++k) alpha[k] /= alpha_sum;
-
-        // --- velocity and the kinetic-energy fix: the remapped kinetic energy
-        // is kept, the difference to |m V|^2 / 2m goes to the internal energies
-        // by mass fraction, so the total energy is remapped conservatively.
-        double cell_mass = 0.0;
-        for (int k = 0; k < n_materials; ++k) cell_mass += mass[k];
-        const Vec3 momentum{integral[layout.momentum(0)], integral[layout.momentum(1)],
-                            integral[layout.momentum(2)]};
-        const Vec3 velocity = (1.0 / cell_mass) * momentum;
-        const double kinetic_remapped = integral[layout.kinetic()];
-        const double kinetic_fix =
-            kinetic_energy_fix ? kinetic_remapped - 0.5 * dot(momentum, velocity) : 0.0;
-        double cell_internal = 0.0;
-        for (int k = 0; k < n_materials; ++k) {
-          internal[k] += (mass[k] / cell_mass) * kinetic_fix;
-          cell_internal += internal[k];
-        }
-
-        s.m_c(c) = cell_mass;
-        storeVec3(s.v_c, c, velocity);
-        s.E_c(c) = (cell_internal + 0.5 * dot(momentum, velocity)) / cell_mass;
-        for (int k = 0; k < n_materials; ++k) {
-          s.alpha_ck(c, k) = alpha[k];
-          s.m_ck(c, k) = mass[k];
-          s.e_ck(c, k) = alpha[k] > 0.0 ? internal[k] / mass[k] : 0.0;
-          const int column = layout.tensor_column[k];
-          if (column < 0) continue;
-          // alpha^k T^k / alpha^k with the remapped alpha^k volume itself.
-          const double material_volume = integral[layout.alpha(k)];
-          const bool present = alpha[k] > 0.0 && material_volume > 0.0;
-          double t[6];
-          for (int i = 0; i < 6; ++i) t[i] = present ? integral[column + i] / material_volume : 0.0;
-          const bool hyper = s.materials(k).strength == StrengthKind::NeoHookean;
-          const SymMat3 tensor =
-              hyper && !present ? identitySym() : SymMat3{t[0], t[1], t[2], t[3], t[4], t[5]};
-          storeSym(hyper ? s.B_ck : s.S_ck, c, k, tensor);
-        }
+        detail::cleanUpMaterials(layout, s.materials, integral, volume, range, alpha_floor, alpha,
+                                 mass, internal);
+        detail::storeRemappedCell(s, layout, c, integral, alpha, mass, internal,
+                                  kinetic_energy_fix);
       },
       boundary);
   return boundary;

@@ -128,7 +128,7 @@ KOKKOS_INLINE_FUNCTION bool staysInOneAxisPlane(const Vec3 q_lag[4], const Vec3 
 // upwind choice of DESIGN §5 for a tie. A region's flux is linear in its
 // volume and first moment (F = dV q_up + grad(q)_up . (M - x_up dV)), so the
 // sum of the triangles' fluxes is the flux of the sum: the remap evaluates
-// one or two fluxes a face instead of four (README, Numerical method, on the
+// one or two fluxes a face instead of four (docs/method.md §5.2, on the
 // guards that are not linear). Slot r = 12 c + 2 f + side, oriented out of
 // cell c. Every interior face is computed once, by its owner (the cell with
 // the lower id), which writes its own 2 slots and the exact negatives into

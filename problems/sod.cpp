@@ -65,7 +65,7 @@ ProblemSetup setupSod(const Config& config) {
 
 // Built-in L1 density bound at the default t_end: measured error at 200 cells
 // with a 30% margin, scaled with the observed convergence rate of each order
-// (README, Verification).
+// (docs/verification.md §2).
 double defaultDensityBound(int order, int nx) {
   const double error_at_200 = order >= 2 ? 2.67e-3 : 1.21e-2;
   const double rate = order >= 2 ? 0.95 : 0.65;

@@ -186,7 +186,7 @@ TEST(Lagrange, OneDimensionalProblemStaysOneDimensional) {
 }
 
 // L1 density error against the exact Riemann solution at 100 and 200 cells;
-// bounds are the measured errors (README, Verification) with a 30% margin.
+// bounds are the measured errors (docs/verification.md §2) with a 30% margin.
 TEST(Lagrange, SodConvergesToTheExactSolution) {
   struct Case {
     int order;

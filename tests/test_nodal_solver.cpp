@@ -131,7 +131,7 @@ double component(const SymMat3& t, int k) {
   return c[k];
 }
 
-// Direct definition of the projected limiter (README, Numerical method), one
+// Direct definition of the projected limiter (docs/method.md §2.3), one
 // vertex at a time, with the faces holding each vertex read from the hex's
 // face-node table: the reference for the kernel's forms.
 template <class Field, class Inner>

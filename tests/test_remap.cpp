@@ -378,7 +378,7 @@ TEST(Remap, PileInRemapModeMatchesItsChecks) {
   EXPECT_LT(result.drift_energy, 1e-12);
 }
 
-// `wilkins` in remap mode (README): the flyer with light gas behind it, walls
+// `wilkins` in remap mode (docs/method.md §6.1): the flyer with light gas behind it, walls
 // at both ends of the fixed mesh. Nothing may enter it: the final totals are
 // compared with the initial cells themselves, not through the audit (which
 // subtracts what it books as crossing a moving outer face, and passed when
@@ -423,7 +423,7 @@ namespace {
 // DESIGN §3 energy split in one mixed cell under a uniform compression (the
 // cell's energy change is exactly the compression work): each material gets
 // its own -p^k dv^k, not a share of the total, with dv^k its part of the
-// volume change, in proportion to w^k = alpha^k / (rho^k a_k^2) (README:
+// volume change, in proportion to w^k = alpha^k / (rho^k a_k^2) (docs/method.md §4.2:
 // shared volume changes; alpha^k dv under equal strain), plus the pressure
 // relaxation relax^k = v w^k (p^k - p_mean) (at most kMaxRelaxation of the
 // material's volume) with its own work -p^k relax^k;

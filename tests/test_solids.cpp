@@ -197,7 +197,7 @@ double stressWork(const CellNodesView::HostMirror& cell_nodes, const StressSnaps
 //    decreases. It is not small on such coarse meshes: 0.52 of the kinetic
 //    energy after 40 steps at 8^3, 0.19 after the same time at 16^3 (with the
 //    stress constant over the cell, as before the second-order stress of
-//    README's Numerical method: 0.67 and 0.38).
+//    docs/method.md §2.2: 0.67 and 0.38).
 TEST(NeoHookeanRun, StrainEnergyIsTheStressWorkAndTheRestIsHeat) {
   const MaterialParams be = materialPreset("Be-hyper");
   const double size = 0.01, amplitude = 50.0;  // m, m/s: strain ~ amplitude / aT ~ 0.5%
@@ -407,7 +407,7 @@ TEST(HypoElasticRun, UniaxialStrainWaveFollowsTheElasticTangent) {
 // rotations about z, so a frame-independent scheme keeps the inner surface
 // round. Limiting the velocity component by component does not: measured
 // 0.148 out of round with it (the default 15 x 90 mesh: 0.091), 2.5e-4 with
-// the vector limiter (README, Numerical method).
+// the vector limiter (docs/method.md §2.3).
 TEST(SolidProblems, CollapsingShellStaysRoundOnItsPolarMesh) {
   const RunResult result = runProblem(
       testing::problemOptions("shell", {"mesh.nx=5", "mesh.ny=30", "geometry.thickness=4e-3"}));
