@@ -58,16 +58,19 @@ ProblemSetup setupSedov(const Config& config) {
   return setup;
 }
 
-std::vector<Check> finishSedov(const Config& config, const FinalFields& fields,
-                               const std::string& out_dir) {
+// Mass and volume of the cells in each of n_bins spherical shells of the
+// octant, while radial.csv gets every cell's radius, density, pressure, speed.
+struct RadialBins {
+  std::vector<double> mass, volume;
+};
+
+RadialBins radialProfile(const FinalFields& fields, double size, int n_bins,
+                         const std::string& out_dir) {
   const Index n_cells = Index(fields.rho.extent(0));
-  const double size = config.real("geometry.size");
   std::ofstream radial;
   if (!out_dir.empty()) radial.open(out_dir + "/radial.csv");
   radial << "r,rho,p,speed\n" << std::setprecision(8);
-  // Shock radius: the radius of the peak of the shell-averaged density.
-  const int n_bins = std::max(fields.nx, 10);
-  std::vector<double> bin_mass(n_bins, 0.0), bin_volume(n_bins, 0.0);
+  RadialBins bins{std::vector<double>(n_bins, 0.0), std::vector<double>(n_bins, 0.0)};
   for (Index c = 0; c < n_cells; ++c) {
     const double r =
         std::sqrt(fields.x_c(c, 0) * fields.x_c(c, 0) + fields.x_c(c, 1) * fields.x_c(c, 1) +
@@ -78,10 +81,19 @@ std::vector<Check> finishSedov(const Config& config, const FinalFields& fields,
     radial << r << ',' << fields.rho(c) << ',' << fields.p(c) << ',' << speed << '\n';
     const int bin = int(r / size * n_bins);
     if (bin < n_bins) {
-      bin_mass[bin] += fields.rho(c) * fields.vol(c);
-      bin_volume[bin] += fields.vol(c);
+      bins.mass[bin] += fields.rho(c) * fields.vol(c);
+      bins.volume[bin] += fields.vol(c);
     }
   }
+  return bins;
+}
+
+// Shock radius: the radius of the peak of the shell-averaged density.
+double shockRadius(const FinalFields& fields, double size, const std::string& out_dir) {
+  const int n_bins = std::max(fields.nx, 10);
+  const RadialBins bins = radialProfile(fields, size, n_bins, out_dir);
+  const std::vector<double>& bin_mass = bins.mass;
+  const std::vector<double>& bin_volume = bins.volume;
   int peak = 0;
   for (int b = 0; b < n_bins; ++b) {
     if (bin_volume[b] > 0 &&
@@ -98,29 +110,38 @@ std::vector<Check> finishSedov(const Config& config, const FinalFields& fields,
     const double curvature = left - 2.0 * centre + right;
     if (curvature < 0.0) offset = 0.5 * (left - right) / curvature;
   }
-  const double measured_radius = (peak + 0.5 + offset) * size / n_bins;
+  return (peak + 0.5 + offset) * size / n_bins;
+}
 
-  // Octant symmetry: the field is invariant under exchanges of x, y, z.
+// Octant symmetry: the field is invariant under exchanges of x, y, z (on a
+// cubic mesh): the largest density difference under them, and the largest density.
+struct OctantSymmetry {
   double asymmetry = 0.0, rho_max = 0.0;
+};
+
+OctantSymmetry octantSymmetry(const FinalFields& fields) {
+  OctantSymmetry s;
   const int nx = fields.nx, ny = fields.ny, nz = fields.nz;
-  if (nx == ny && ny == nz) {
-    auto id = [&](int i, int j, int k) { return i + nx * (j + ny * k); };
-    for (int k = 0; k < nz; ++k)
-      for (int j = 0; j < ny; ++j)
-        for (int i = 0; i < nx; ++i) {
-          const double rho = fields.rho(id(i, j, k));
-          rho_max = std::max(rho_max, rho);
-          asymmetry = std::max({asymmetry, std::abs(rho - fields.rho(id(j, i, k))),
+  auto id = [&](int i, int j, int k) { return i + nx * (j + ny * k); };
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        const double rho = fields.rho(id(i, j, k));
+        s.rho_max = std::max(s.rho_max, rho);
+        s.asymmetry = std::max({s.asymmetry, std::abs(rho - fields.rho(id(j, i, k))),
                                 std::abs(rho - fields.rho(id(k, j, i))),
                                 std::abs(rho - fields.rho(id(i, k, j)))});
-        }
-  }
+      }
+  return s;
+}
+
+// slice_z.csv: the cell layer at z = 0 with the corners of each cell's bottom
+// face (VTK nodes 0-3), so the map shows the Lagrangian cells as they are.
+void writeSliceZ(const std::string& out_dir, const FinalFields& fields) {
   std::ofstream slice;
   if (!out_dir.empty()) slice.open(out_dir + "/slice_z.csv");
-  // The cell layer at z = 0 with the corners of each cell's bottom face
-  // (VTK nodes 0-3), so the map shows the Lagrangian cells as they are.
   slice << "x,y,rho,p,speed,x0,y0,x1,y1,x2,y2,x3,y3\n" << std::setprecision(8);
-  for (Index c = 0; c < nx * ny; ++c) {
+  for (Index c = 0; c < fields.nx * fields.ny; ++c) {
     slice << fields.x_c(c, 0) << ',' << fields.x_c(c, 1) << ',' << fields.rho(c) << ','
           << fields.p(c) << ','
           << std::sqrt(fields.v(c, 0) * fields.v(c, 0) + fields.v(c, 1) * fields.v(c, 1));
@@ -130,6 +151,14 @@ std::vector<Check> finishSedov(const Config& config, const FinalFields& fields,
     }
     slice << '\n';
   }
+}
+
+std::vector<Check> finishSedov(const Config& config, const FinalFields& fields,
+                               const std::string& out_dir) {
+  const double measured_radius = shockRadius(fields, config.real("geometry.size"), out_dir);
+  const bool cubic = fields.nx == fields.ny && fields.ny == fields.nz;
+  const OctantSymmetry symmetry = cubic ? octantSymmetry(fields) : OctantSymmetry{};
+  writeSliceZ(out_dir, fields);
   std::vector<Check> checks;
   const double gamma = config.real("gas.gamma");
   if (std::abs(gamma - 1.4) < 1e-12) {
@@ -140,9 +169,9 @@ std::vector<Check> finishSedov(const Config& config, const FinalFields& fields,
                       config.real("check.radius_tolerance") * reference,
                       "peak of the shell-averaged density vs the self-similar radius"});
   }
-  if (nx == ny && ny == nz) {
-    checks.push_back({"octant_symmetry", asymmetry / std::max(rho_max, 1e-300), 0.0, 1e-8,
-                      "max |rho(i,j,k) - rho(permuted)| / max rho"});
+  if (cubic) {
+    checks.push_back({"octant_symmetry", symmetry.asymmetry / std::max(symmetry.rho_max, 1e-300),
+                      0.0, 1e-8, "max |rho(i,j,k) - rho(permuted)| / max rho"});
   }
   setModeIndependentReferences(config, checks);
   return checks;

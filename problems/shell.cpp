@@ -182,18 +182,19 @@ double beAreaOf(const FinalFields& fields) {
   return area;
 }
 
-std::vector<Check> finishShell(const Config& config, const FinalFields& fields,
-                               const std::string& out_dir) {
-  const bool remap = config.remapMode();
-  // The stopping inner radius: the smallest one of the probe's history.
+// The stopping inner radius: the smallest one of the probe's history.
+double smallestInnerRadius(const FinalFields& fields) {
   double inner_min = INFINITY;
   for (const auto& [t, r] : fields.probe) inner_min = r < inner_min ? r : inner_min;
-  // The collapse must end inside the run: the inner surface's mean inward
-  // speed over the last 2% of it, against V0 (zero once it rebounds
-  // elastically, as in lagrange mode). The time of the smallest radius would
-  // not do: a remapped shell settles without a visible rebound, its inner
-  // radius still creeping down by micrometres (1e-3 m/s) at t_end.
-  const double t_end = config.real("t_end");
+  return inner_min;
+}
+
+// The collapse must end inside the run: the inner surface's mean inward
+// speed over the last 2% of it, against V0 (zero once it rebounds
+// elastically, as in lagrange mode). The time of the smallest radius would
+// not do: a remapped shell settles without a visible rebound, its inner
+// radius still creeping down by micrometres (1e-3 m/s) at t_end.
+double finalInwardSpeed(const FinalFields& fields, double t_end) {
   double window_t = NAN, window_r = NAN, last_t = NAN, last_r = NAN;
   for (const auto& [t, r] : fields.probe) {
     if (std::isnan(window_t) && t >= 0.98 * t_end) {
@@ -203,17 +204,13 @@ std::vector<Check> finishShell(const Config& config, const FinalFields& fields,
     last_t = t;
     last_r = r;
   }
-  const double inward_speed =
-      last_t > window_t ? std::max(0.0, (window_r - last_r) / (last_t - window_t)) : NAN;
-  // Lagrange: the shell is incompressible to first order, so the outer radius
-  // follows from the inner one by conservation of the shell's area,
-  // r_o^2 - r_i^2 = const. Remap: the same with the beryllium area measured
-  // at t_end from the volume fractions (the probe holds one number per step;
-  // the area changes by the elastic compression only, ~1e-3, i.e. ~0.02 mm
-  // on the outer radius).
-  const double ri0 = config.real("shell.inner_radius"), ro0 = config.real("shell.outer_radius");
-  const double shell_area = remap ? beAreaOf(fields) / kPi : ro0 * ro0 - ri0 * ri0;
-  const double outer_at_stop = std::sqrt(inner_min * inner_min + shell_area);
+  return last_t > window_t ? std::max(0.0, (window_r - last_r) / (last_t - window_t)) : NAN;
+}
+
+// shell_radii.csv: the inner radius after every step and the outer radius
+// from it (shell area of the initial radii; remap: also of the beryllium area).
+void writeRadii(const std::string& out_dir, const FinalFields& fields, bool remap, double ri0,
+                double ro0, double shell_area) {
   std::ofstream csv;
   if (!out_dir.empty()) csv.open(out_dir + "/shell_radii.csv");
   csv << "t,inner_radius,outer_radius_incompressible" << (remap ? ",outer_radius_be_area\n" : "\n")
@@ -223,6 +220,10 @@ std::vector<Check> finishShell(const Config& config, const FinalFields& fields,
     if (remap) csv << ',' << std::sqrt(r * r + shell_area);
     csv << '\n';
   }
+}
+
+// shell_mesh_z0.csv: the in-plane corners (VTK nodes 0-3) and density of every cell.
+void writeMeshZ0(const std::string& out_dir, const FinalFields& fields) {
   std::ofstream cells;
   if (!out_dir.empty()) cells.open(out_dir + "/shell_mesh_z0.csv");
   cells << "x0,y0,x1,y1,x2,y2,x3,y3,density\n" << std::setprecision(8);
@@ -234,45 +235,63 @@ std::vector<Check> finishShell(const Config& config, const FinalFields& fields,
     }
     cells << fields.rho(c) << '\n';
   }
-  // Roundness of the inner surface at t_end: (max - min) / min of its radius.
-  // Lagrange: the inner-surface nodes (first radial column of the polar mesh).
-  // Remap: where the beryllium volume fraction first rises through 1/2 along
-  // 32 rays from the centre (also written with the outer crossings).
-  double inner_lo = INFINITY, inner_hi = 0.0;
-  if (remap) {
-    std::ofstream contour;
-    if (!out_dir.empty()) contour.open(out_dir + "/shell_contour.csv");
-    contour << "theta,inner_radius,outer_radius\n" << std::setprecision(10);
-    const double z_mid = 0.5 * config.real("geometry.thickness");
-    constexpr int kRays = 32;
-    for (int ray = 0; ray < kRays; ++ray) {
-      const double theta = 2.0 * kPi * (ray + 0.5) / kRays;
-      const auto crossings =
-          alphaCrossingsAlongRay(fields, 0, {0, 0, z_mid}, {std::cos(theta), std::sin(theta), 0});
-      double inner = NAN, outer = NAN;
-      for (const AlphaCrossing& crossing : crossings) {
-        if (std::isnan(inner) && crossing.rising) inner = crossing.distance;
-        if (!std::isnan(inner) && !crossing.rising) {
-          outer = crossing.distance;
-          break;
-        }
+}
+
+// Smallest and largest inner radius at t_end (NaN where a ray finds none).
+struct RadiusRange {
+  double lo = INFINITY, hi = 0.0;
+};
+
+// Remap: where the beryllium volume fraction first rises through 1/2 along
+// 32 rays from the centre (also written with the outer crossings).
+RadiusRange contourInnerRadii(const Config& config, const FinalFields& fields,
+                              const std::string& out_dir) {
+  RadiusRange range;
+  std::ofstream contour;
+  if (!out_dir.empty()) contour.open(out_dir + "/shell_contour.csv");
+  contour << "theta,inner_radius,outer_radius\n" << std::setprecision(10);
+  const double z_mid = 0.5 * config.real("geometry.thickness");
+  constexpr int kRays = 32;
+  for (int ray = 0; ray < kRays; ++ray) {
+    const double theta = 2.0 * kPi * (ray + 0.5) / kRays;
+    const auto crossings =
+        alphaCrossingsAlongRay(fields, 0, {0, 0, z_mid}, {std::cos(theta), std::sin(theta), 0});
+    double inner = NAN, outer = NAN;
+    for (const AlphaCrossing& crossing : crossings) {
+      if (std::isnan(inner) && crossing.rising) inner = crossing.distance;
+      if (!std::isnan(inner) && !crossing.rising) {
+        outer = crossing.distance;
+        break;
       }
-      contour << theta << ',' << inner << ',' << outer << '\n';
-      inner_lo = std::isnan(inner) ? NAN : std::min(inner_lo, inner);
-      inner_hi = std::isnan(inner) ? NAN : std::max(inner_hi, inner);
     }
-  } else {
-    const int nx = fields.nx;
-    for (Index c = 0; c < n_cells; ++c) {
-      if (c % nx != 0) continue;  // cells touching the inner surface (i = 0)
-      for (int p : {0, 3}) {      // VTK nodes 0 and 3 lie on the r = Ri side
-        const Index node = fields.mesh.cell_nodes(c, p);
-        const double r = std::hypot(fields.mesh.x_n(node, 0), fields.mesh.x_n(node, 1));
-        inner_lo = std::min(inner_lo, r);
-        inner_hi = std::max(inner_hi, r);
-      }
+    contour << theta << ',' << inner << ',' << outer << '\n';
+    range.lo = std::isnan(inner) ? NAN : std::min(range.lo, inner);
+    range.hi = std::isnan(inner) ? NAN : std::max(range.hi, inner);
+  }
+  return range;
+}
+
+// Lagrange: the inner-surface nodes (first radial column of the polar mesh).
+RadiusRange surfaceInnerRadii(const FinalFields& fields) {
+  RadiusRange range;
+  const Index n_cells = Index(fields.rho.extent(0));
+  const int nx = fields.nx;
+  for (Index c = 0; c < n_cells; ++c) {
+    if (c % nx != 0) continue;  // cells touching the inner surface (i = 0)
+    for (int p : {0, 3}) {      // VTK nodes 0 and 3 lie on the r = Ri side
+      const Index node = fields.mesh.cell_nodes(c, p);
+      const double r = std::hypot(fields.mesh.x_n(node, 0), fields.mesh.x_n(node, 1));
+      range.lo = std::min(range.lo, r);
+      range.hi = std::max(range.hi, r);
     }
   }
+  return range;
+}
+
+// The checks: stopping radii, roundness at t_end and the final inward speed.
+std::vector<Check> shellChecks(const Config& config, double inner_min, double outer_at_stop,
+                               const RadiusRange& inner, double inward_speed) {
+  const bool remap = config.remapMode();
   const double tol = config.real("check.radius_tolerance");
   std::vector<Check> checks{
       {"stopping_inner_radius", inner_min, config.real("check.inner_radius"), tol,
@@ -283,7 +302,7 @@ std::vector<Check> finishShell(const Config& config, const FinalFields& fields,
        remap ? "outer radius when the inner one stops, from the beryllium area at t_end "
                "(H&B 78.1 mm; paper 79 mm)"
              : "outer radius when the inner one stops, from the shell's area (H&B 78.1 mm)"},
-      {"inner_circularity", (inner_hi - inner_lo) / inner_lo, 0.0, remap ? 0.05 : 0.01,
+      {"inner_circularity", (inner.hi - inner.lo) / inner.lo, 0.0, remap ? 0.05 : 0.01,
        remap ? "(max - min) / min of the alpha = 1/2 inner radius along 32 rays at t_end"
              : "(max - min) / min of the inner-surface radius at t_end: the shell stays "
                "round"},
@@ -296,6 +315,28 @@ std::vector<Check> finishShell(const Config& config, const FinalFields& fields,
   }
   setModeIndependentReferences(config, checks);  // Howell & Ball's radii, in both modes
   return checks;
+}
+
+std::vector<Check> finishShell(const Config& config, const FinalFields& fields,
+                               const std::string& out_dir) {
+  const bool remap = config.remapMode();
+  const double inner_min = smallestInnerRadius(fields);
+  const double inward_speed = finalInwardSpeed(fields, config.real("t_end"));
+  // Lagrange: the shell is incompressible to first order, so the outer radius
+  // follows from the inner one by conservation of the shell's area,
+  // r_o^2 - r_i^2 = const. Remap: the same with the beryllium area measured
+  // at t_end from the volume fractions (the probe holds one number per step;
+  // the area changes by the elastic compression only, ~1e-3, i.e. ~0.02 mm
+  // on the outer radius).
+  const double ri0 = config.real("shell.inner_radius"), ro0 = config.real("shell.outer_radius");
+  const double shell_area = remap ? beAreaOf(fields) / kPi : ro0 * ro0 - ri0 * ri0;
+  const double outer_at_stop = std::sqrt(inner_min * inner_min + shell_area);
+  writeRadii(out_dir, fields, remap, ri0, ro0, shell_area);
+  writeMeshZ0(out_dir, fields);
+  // Roundness of the inner surface at t_end: (max - min) / min of its radius.
+  const RadiusRange inner =
+      remap ? contourInnerRadii(config, fields, out_dir) : surfaceInnerRadii(fields);
+  return shellChecks(config, inner_min, outer_at_stop, inner, inward_speed);
 }
 
 }  // namespace

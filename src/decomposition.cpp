@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 #include "parallel.hpp"
 #include "problem.hpp"
@@ -185,6 +186,187 @@ std::vector<Halo::Link> makeLinks(const std::vector<long>& local_global,
   return links;
 }
 
+// A device View's host copy, as create_mirror_view_and_copy returns it.
+template <class ViewT>
+using HostCopy = decltype(Kokkos::create_mirror_view_and_copy(HostSpace(), std::declval<ViewT>()));
+
+// Owner rank of every global cell of the block, from the split points along each axis.
+struct CellOwner {
+  int nx, ny;
+  std::array<int, 3> grid;
+  std::array<std::vector<int>, 3> part_of;  // per axis: the part of each cell index
+  int operator()(long c) const {
+    const int i = int(c % nx), j = int((c / nx) % ny), k = int(c / (long(nx) * ny));
+    return part_of[0][i] + grid[0] * (part_of[1][j] + grid[1] * part_of[2][k]);
+  }
+};
+
+CellOwner cellOwners(int nx, int ny, int nz, const std::array<int, 3>& grid) {
+  CellOwner owner{nx, ny, grid, {}};
+  const int n[3] = {nx, ny, nz};
+  for (int d = 0; d < 3; ++d) {
+    owner.part_of[d].resize(std::size_t(n[d]));
+    for (int p = 0; p < grid[d]; ++p)
+      for (int i = splitStart(n[d], grid[d], p); i < splitStart(n[d], grid[d], p + 1); ++i) {
+        owner.part_of[d][std::size_t(i)] = p;
+      }
+  }
+  return owner;
+}
+
+// Owner rank of every global node: the lowest rank owning one of its cells.
+std::vector<int> nodeOwners(const Mesh& global, const HostCopy<CellNodesView>& nodes_g,
+                            const CellOwner& cell_owner, int n_ranks) {
+  std::vector<int> node_owner(std::size_t(global.n_nodes), n_ranks);
+  for (Index c = 0; c < global.n_cells; ++c) {
+    const int owner = cell_owner(c);
+    for (int p = 0; p < 8; ++p) {
+      int& o = node_owner[std::size_t(nodes_g(c, p))];
+      o = std::min(o, owner);
+    }
+  }
+  return node_owner;
+}
+
+// This rank's cells and nodes: their global ids in increasing order, their
+// owners, and the global -> local maps (-1: not held here).
+struct LocalEntities {
+  std::vector<long> cells, nodes;
+  std::vector<int> cell_owner, node_owner;
+  std::vector<Index> cell_local, node_local;
+};
+
+// Local cells: the owned box grown by the ghost layers, in global order.
+void localCells(const Mesh& global, const CellOwner& cell_owner, const std::array<int, 3>& grid,
+                int me, LocalEntities& local) {
+  const int nx = global.nx, ny = global.ny, nz = global.nz;
+  const CellBox box = ownedBox(nx, ny, nz, grid, me);
+  for (int k = std::max(box.lo[2] - kGhostLayers, 0); k < std::min(box.hi[2] + kGhostLayers, nz);
+       ++k)
+    for (int j = std::max(box.lo[1] - kGhostLayers, 0); j < std::min(box.hi[1] + kGhostLayers, ny);
+         ++j)
+      for (int i = std::max(box.lo[0] - kGhostLayers, 0);
+           i < std::min(box.hi[0] + kGhostLayers, nx); ++i) {
+        const long c = i + long(nx) * (j + long(ny) * k);
+        local.cells.push_back(c);
+        local.cell_owner.push_back(cell_owner(c));
+      }
+  local.cell_local.assign(std::size_t(global.n_cells), -1);
+  for (std::size_t i = 0; i < local.cells.size(); ++i) {
+    local.cell_local[std::size_t(local.cells[i])] = Index(i);
+  }
+}
+
+// Local nodes: those of the local cells, in global order.
+void localNodes(const Mesh& global, const HostCopy<CellNodesView>& nodes_g,
+                const std::vector<int>& node_owner, LocalEntities& local) {
+  std::vector<Index>& node_local = local.node_local;
+  std::vector<long>& nodes = local.nodes;
+  node_local.assign(std::size_t(global.n_nodes), -1);
+  for (long c : local.cells)
+    for (int p = 0; p < 8; ++p) {
+      const Index node = nodes_g(Index(c), p);
+      if (node_local[std::size_t(node)] < 0) {
+        node_local[std::size_t(node)] = 0;
+        nodes.push_back(node);
+      }
+    }
+  std::sort(nodes.begin(), nodes.end());
+  local.node_owner.resize(nodes.size());
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    node_local[std::size_t(nodes[i])] = Index(i);
+    local.node_owner[i] = node_owner[std::size_t(nodes[i])];
+  }
+}
+
+// The local nodes' arrays: the global ones restricted and renumbered, and
+// the traction faces that are on local cells.
+void restrictNodes(const Mesh& global, const LocalEntities& local, int me, Mesh& mesh) {
+  const auto x_g = Kokkos::create_mirror_view_and_copy(HostSpace(), global.x_n);
+  const auto constrained_g =
+      Kokkos::create_mirror_view_and_copy(HostSpace(), global.node_constrained);
+  const auto projector_g = Kokkos::create_mirror_view_and_copy(HostSpace(), global.node_projector);
+  const auto traction_offsets_g =
+      Kokkos::create_mirror_view_and_copy(HostSpace(), global.node_traction_offsets);
+  const auto traction_faces_g =
+      Kokkos::create_mirror_view_and_copy(HostSpace(), global.node_traction_faces);
+  Vec3View::HostMirror x_host("lagremap::mesh::x_n", mesh.n_nodes);
+  Kokkos::View<int*, HostSpace> constrained_host("lagremap::mesh::node_constrained", mesh.n_nodes);
+  Sym6View::HostMirror projector_host("lagremap::mesh::node_projector", mesh.n_nodes);
+  Kokkos::View<int*, HostSpace> node_owned_host("lagremap::mesh::node_owned", mesh.n_nodes);
+  mesh.node_global = Kokkos::View<long*, HostSpace>("lagremap::mesh::node_global", mesh.n_nodes);
+  std::vector<Index> traction_offsets(std::size_t(mesh.n_nodes) + 1, 0), traction_faces;
+  for (Index n = 0; n < mesh.n_nodes; ++n) {
+    const Index g = Index(local.nodes[std::size_t(n)]);
+    for (int d = 0; d < 3; ++d) x_host(n, d) = x_g(g, d);
+    for (int d = 0; d < 6; ++d) projector_host(n, d) = projector_g(g, d);
+    constrained_host(n) = constrained_g(g);
+    node_owned_host(n) = local.node_owner[std::size_t(n)] == me;
+    mesh.node_global(n) = g;
+    for (Index i = traction_offsets_g(g); i < traction_offsets_g(g + 1); ++i) {
+      const Index face = traction_faces_g(i);
+      const Index cell = local.cell_local[std::size_t(face / 6)];
+      if (cell >= 0) traction_faces.push_back(6 * cell + face % 6);  // (a ghost node may miss some)
+    }
+    traction_offsets[std::size_t(n) + 1] = Index(traction_faces.size());
+  }
+  mesh.x_n = upload<Vec3View>(x_host);
+  mesh.node_constrained = upload<DeviceView<int*>>(constrained_host);
+  mesh.node_projector = upload<Sym6View>(projector_host);
+  mesh.node_owned = upload<DeviceView<int*>>(node_owned_host);
+  mesh.node_traction_offsets =
+      uploadIndices("lagremap::mesh::node_traction_offsets", traction_offsets);
+  mesh.node_traction_faces = uploadIndices("lagremap::mesh::node_traction_faces", traction_faces);
+}
+
+// Node -> corner CRS in local corner order, which is the global order.
+void uploadNodeCorners(const CellNodesView::HostMirror& nodes_host, Mesh& mesh) {
+  std::vector<Index> corner_offsets(std::size_t(mesh.n_nodes) + 1, 0);
+  for (Index c = 0; c < mesh.n_cells; ++c)
+    for (int p = 0; p < 8; ++p) ++corner_offsets[std::size_t(nodes_host(c, p)) + 1];
+  for (Index i = 0; i < mesh.n_nodes; ++i) corner_offsets[i + 1] += corner_offsets[i];
+  std::vector<Index> corners(std::size_t(corner_offsets.back()));
+  std::vector<Index> fill(corner_offsets.begin(), corner_offsets.end() - 1);
+  for (Index c = 0; c < mesh.n_cells; ++c)
+    for (int p = 0; p < 8; ++p) corners[std::size_t(fill[nodes_host(c, p)]++)] = 8 * c + p;
+  mesh.node_corner_offsets = uploadIndices("lagremap::mesh::node_corner_offsets", corner_offsets);
+  mesh.node_corners = uploadIndices("lagremap::mesh::node_corners", corners);
+}
+
+// The local cells' arrays: the global ones restricted and renumbered, and
+// the node -> corner CRS.
+void restrictCells(const Mesh& global, const HostCopy<CellNodesView>& nodes_g,
+                   const LocalEntities& local, int me, Mesh& mesh) {
+  const auto neighbors_g = Kokkos::create_mirror_view_and_copy(HostSpace(), global.cell_neighbors);
+  const auto side_g = Kokkos::create_mirror_view_and_copy(HostSpace(), global.cell_face_side);
+  const auto face_g = Kokkos::create_mirror_view_and_copy(HostSpace(), global.cell_neighbor_face);
+  CellNodesView::HostMirror nodes_host("lagremap::mesh::cell_nodes", mesh.n_cells);
+  CellFacesView::HostMirror neighbors_host("lagremap::mesh::cell_neighbors", mesh.n_cells);
+  CellFacesView::HostMirror side_host("lagremap::mesh::cell_face_side", mesh.n_cells);
+  CellFacesView::HostMirror face_host("lagremap::mesh::cell_neighbor_face", mesh.n_cells);
+  Kokkos::View<int*, HostSpace> cell_owned_host("lagremap::mesh::cell_owned", mesh.n_cells);
+  mesh.cell_global = Kokkos::View<long*, HostSpace>("lagremap::mesh::cell_global", mesh.n_cells);
+  for (Index c = 0; c < mesh.n_cells; ++c) {
+    const Index g = Index(local.cells[std::size_t(c)]);
+    for (int p = 0; p < 8; ++p) nodes_host(c, p) = local.node_local[std::size_t(nodes_g(g, p))];
+    for (int f = 0; f < 6; ++f) {
+      const Index nb = neighbors_g(g, f);
+      const Index nb_local = nb >= 0 ? local.cell_local[std::size_t(nb)] : -1;
+      neighbors_host(c, f) = nb_local;  // -1 across the cut of the outer ghost layer
+      side_host(c, f) = side_g(g, f);
+      face_host(c, f) = nb_local >= 0 ? face_g(g, f) : -1;
+    }
+    cell_owned_host(c) = local.cell_owner[std::size_t(c)] == me;
+    mesh.cell_global(c) = g;
+  }
+  uploadNodeCorners(nodes_host, mesh);
+  mesh.cell_nodes = upload<CellNodesView>(nodes_host);
+  mesh.cell_neighbors = upload<CellFacesView>(neighbors_host);
+  mesh.cell_face_side = upload<CellFacesView>(side_host);
+  mesh.cell_neighbor_face = upload<CellFacesView>(face_host);
+  mesh.cell_owned = upload<DeviceView<int*>>(cell_owned_host);
+}
+
 }  // namespace
 
 Subdomain decompose(const Mesh& global) {
@@ -195,160 +377,33 @@ Subdomain decompose(const Mesh& global) {
   }
   Subdomain sub;
   sub.grid = chooseProcessGrid(nx, ny, nz, n_ranks);
-  const std::array<int, 3>& grid = sub.grid;
 
-  // Owner of every global cell (from the split points along each axis) and
-  // of every node (the lowest rank owning one of its cells).
-  std::array<std::vector<int>, 3> part_of;
-  const int n[3] = {nx, ny, nz};
-  for (int d = 0; d < 3; ++d) {
-    part_of[d].resize(std::size_t(n[d]));
-    for (int p = 0; p < grid[d]; ++p)
-      for (int i = splitStart(n[d], grid[d], p); i < splitStart(n[d], grid[d], p + 1); ++i) {
-        part_of[d][std::size_t(i)] = p;
-      }
-  }
-  auto cellOwner = [&](long c) {
-    const int i = int(c % nx), j = int((c / nx) % ny), k = int(c / (long(nx) * ny));
-    return part_of[0][i] + grid[0] * (part_of[1][j] + grid[1] * part_of[2][k]);
-  };
+  // Owner of every global cell and node, then this rank's cells and nodes.
+  const CellOwner cell_owner = cellOwners(nx, ny, nz, sub.grid);
   const auto nodes_g = Kokkos::create_mirror_view_and_copy(HostSpace(), global.cell_nodes);
-  std::vector<int> node_owner(std::size_t(global.n_nodes), n_ranks);
-  for (Index c = 0; c < global.n_cells; ++c) {
-    const int owner = cellOwner(c);
-    for (int p = 0; p < 8; ++p) {
-      int& o = node_owner[std::size_t(nodes_g(c, p))];
-      o = std::min(o, owner);
-    }
-  }
-
-  // Local cells: the owned box grown by the ghost layers, in global order.
-  const CellBox box = ownedBox(nx, ny, nz, grid, me);
-  std::vector<long> cells;
-  std::vector<int> cell_owner;
-  for (int k = std::max(box.lo[2] - kGhostLayers, 0); k < std::min(box.hi[2] + kGhostLayers, nz);
-       ++k)
-    for (int j = std::max(box.lo[1] - kGhostLayers, 0); j < std::min(box.hi[1] + kGhostLayers, ny);
-         ++j)
-      for (int i = std::max(box.lo[0] - kGhostLayers, 0);
-           i < std::min(box.hi[0] + kGhostLayers, nx); ++i) {
-        const long c = i + long(nx) * (j + long(ny) * k);
-        cells.push_back(c);
-        cell_owner.push_back(cellOwner(c));
-      }
-  std::vector<Index> cell_local(std::size_t(global.n_cells), -1);
-  for (std::size_t i = 0; i < cells.size(); ++i) cell_local[std::size_t(cells[i])] = Index(i);
-  std::vector<Index> node_local(std::size_t(global.n_nodes), -1);
-  std::vector<long> nodes;
-  for (long c : cells)
-    for (int p = 0; p < 8; ++p) {
-      const Index node = nodes_g(Index(c), p);
-      if (node_local[std::size_t(node)] < 0) {
-        node_local[std::size_t(node)] = 0;
-        nodes.push_back(node);
-      }
-    }
-  std::sort(nodes.begin(), nodes.end());
-  std::vector<int> local_node_owner(nodes.size());
-  for (std::size_t i = 0; i < nodes.size(); ++i) {
-    node_local[std::size_t(nodes[i])] = Index(i);
-    local_node_owner[i] = node_owner[std::size_t(nodes[i])];
-  }
+  const std::vector<int> node_owner = nodeOwners(global, nodes_g, cell_owner, n_ranks);
+  LocalEntities local;
+  localCells(global, cell_owner, sub.grid, me, local);
+  localNodes(global, nodes_g, node_owner, local);
 
   // --- the local mesh: the global arrays restricted and renumbered.
   Mesh& mesh = sub.mesh;
   mesh.nx = nx;
   mesh.ny = ny;
   mesh.nz = nz;
-  mesh.n_cells = Index(cells.size());
-  mesh.n_nodes = Index(nodes.size());
-  const auto x_g = Kokkos::create_mirror_view_and_copy(HostSpace(), global.x_n);
-  const auto neighbors_g = Kokkos::create_mirror_view_and_copy(HostSpace(), global.cell_neighbors);
-  const auto side_g = Kokkos::create_mirror_view_and_copy(HostSpace(), global.cell_face_side);
-  const auto face_g = Kokkos::create_mirror_view_and_copy(HostSpace(), global.cell_neighbor_face);
-  const auto constrained_g =
-      Kokkos::create_mirror_view_and_copy(HostSpace(), global.node_constrained);
-  const auto projector_g = Kokkos::create_mirror_view_and_copy(HostSpace(), global.node_projector);
-  const auto traction_offsets_g =
-      Kokkos::create_mirror_view_and_copy(HostSpace(), global.node_traction_offsets);
-  const auto traction_faces_g =
-      Kokkos::create_mirror_view_and_copy(HostSpace(), global.node_traction_faces);
-
-  Vec3View::HostMirror x_host("lagremap::mesh::x_n", mesh.n_nodes);
-  Kokkos::View<int*, HostSpace> constrained_host("lagremap::mesh::node_constrained", mesh.n_nodes);
-  Sym6View::HostMirror projector_host("lagremap::mesh::node_projector", mesh.n_nodes);
-  Kokkos::View<int*, HostSpace> node_owned_host("lagremap::mesh::node_owned", mesh.n_nodes);
-  mesh.node_global = Kokkos::View<long*, HostSpace>("lagremap::mesh::node_global", mesh.n_nodes);
-  std::vector<Index> traction_offsets(std::size_t(mesh.n_nodes) + 1, 0), traction_faces;
-  for (Index n = 0; n < mesh.n_nodes; ++n) {
-    const Index g = Index(nodes[std::size_t(n)]);
-    for (int d = 0; d < 3; ++d) x_host(n, d) = x_g(g, d);
-    for (int d = 0; d < 6; ++d) projector_host(n, d) = projector_g(g, d);
-    constrained_host(n) = constrained_g(g);
-    node_owned_host(n) = local_node_owner[std::size_t(n)] == me;
-    mesh.node_global(n) = g;
-    for (Index i = traction_offsets_g(g); i < traction_offsets_g(g + 1); ++i) {
-      const Index face = traction_faces_g(i);
-      const Index local = cell_local[std::size_t(face / 6)];
-      if (local >= 0)
-        traction_faces.push_back(6 * local + face % 6);  // (a ghost node may miss some)
-    }
-    traction_offsets[std::size_t(n) + 1] = Index(traction_faces.size());
-  }
-  CellNodesView::HostMirror nodes_host("lagremap::mesh::cell_nodes", mesh.n_cells);
-  CellFacesView::HostMirror neighbors_host("lagremap::mesh::cell_neighbors", mesh.n_cells);
-  CellFacesView::HostMirror side_host("lagremap::mesh::cell_face_side", mesh.n_cells);
-  CellFacesView::HostMirror face_host("lagremap::mesh::cell_neighbor_face", mesh.n_cells);
-  Kokkos::View<int*, HostSpace> cell_owned_host("lagremap::mesh::cell_owned", mesh.n_cells);
-  mesh.cell_global = Kokkos::View<long*, HostSpace>("lagremap::mesh::cell_global", mesh.n_cells);
-  for (Index c = 0; c < mesh.n_cells; ++c) {
-    const Index g = Index(cells[std::size_t(c)]);
-    for (int p = 0; p < 8; ++p) nodes_host(c, p) = node_local[std::size_t(nodes_g(g, p))];
-    for (int f = 0; f < 6; ++f) {
-      const Index nb = neighbors_g(g, f);
-      const Index nb_local = nb >= 0 ? cell_local[std::size_t(nb)] : -1;
-      neighbors_host(c, f) = nb_local;  // -1 across the cut of the outer ghost layer
-      side_host(c, f) = side_g(g, f);
-      face_host(c, f) = nb_local >= 0 ? face_g(g, f) : -1;
-    }
-    cell_owned_host(c) = cell_owner[std::size_t(c)] == me;
-    mesh.cell_global(c) = g;
-  }
-  // node -> corner CRS in local corner order, which is the global order.
-  std::vector<Index> corner_offsets(std::size_t(mesh.n_nodes) + 1, 0);
-  for (Index c = 0; c < mesh.n_cells; ++c)
-    for (int p = 0; p < 8; ++p) ++corner_offsets[std::size_t(nodes_host(c, p)) + 1];
-  for (Index i = 0; i < mesh.n_nodes; ++i) corner_offsets[i + 1] += corner_offsets[i];
-  std::vector<Index> corners(std::size_t(corner_offsets.back()));
-  {
-    std::vector<Index> fill(corner_offsets.begin(), corner_offsets.end() - 1);
-    for (Index c = 0; c < mesh.n_cells; ++c)
-      for (int p = 0; p < 8; ++p) corners[std::size_t(fill[nodes_host(c, p)]++)] = 8 * c + p;
-  }
-
-  mesh.x_n = upload<Vec3View>(x_host);
-  mesh.cell_nodes = upload<CellNodesView>(nodes_host);
-  mesh.cell_neighbors = upload<CellFacesView>(neighbors_host);
-  mesh.cell_face_side = upload<CellFacesView>(side_host);
-  mesh.cell_neighbor_face = upload<CellFacesView>(face_host);
-  mesh.node_constrained = upload<DeviceView<int*>>(constrained_host);
-  mesh.node_projector = upload<Sym6View>(projector_host);
-  mesh.cell_owned = upload<DeviceView<int*>>(cell_owned_host);
-  mesh.node_owned = upload<DeviceView<int*>>(node_owned_host);
-  mesh.node_corner_offsets = uploadIndices("lagremap::mesh::node_corner_offsets", corner_offsets);
-  mesh.node_corners = uploadIndices("lagremap::mesh::node_corners", corners);
-  mesh.node_traction_offsets =
-      uploadIndices("lagremap::mesh::node_traction_offsets", traction_offsets);
-  mesh.node_traction_faces = uploadIndices("lagremap::mesh::node_traction_faces", traction_faces);
+  mesh.n_cells = Index(local.cells.size());
+  mesh.n_nodes = Index(local.nodes.size());
+  restrictNodes(global, local, me, mesh);
+  restrictCells(global, nodes_g, local, me, mesh);
   mesh.side_traction = global.side_traction;  // per box side: shared, never written
   mesh.side_kind = global.side_kind;
-  mesh.n_owned_cells = Index(std::count(cell_owner.begin(), cell_owner.end(), me));
-  mesh.n_owned_nodes = Index(std::count(local_node_owner.begin(), local_node_owner.end(), me));
+  mesh.n_owned_cells = Index(std::count(local.cell_owner.begin(), local.cell_owner.end(), me));
+  mesh.n_owned_nodes = Index(std::count(local.node_owner.begin(), local.node_owner.end(), me));
   mesh.n_global_cells = global.n_cells;
   mesh.n_global_nodes = global.n_nodes;
 
-  sub.halo.cell_links = makeLinks(cells, cell_owner, cell_local, "cell");
-  sub.halo.node_links = makeLinks(nodes, local_node_owner, node_local, "node");
+  sub.halo.cell_links = makeLinks(local.cells, local.cell_owner, local.cell_local, "cell");
+  sub.halo.node_links = makeLinks(local.nodes, local.node_owner, local.node_local, "node");
   return sub;
 }
 

@@ -25,6 +25,240 @@ IndexView uploadList(const std::string& label, const std::vector<T>& list) {
   return device;
 }
 
+int nodeId(const BlockSpec& spec, int i, int j, int k) {
+  return i + (spec.nx + 1) * (j + (spec.ny + 1) * k);
+}
+int cellId(const BlockSpec& spec, int i, int j, int k) {
+  return i + spec.nx * (j + spec.ny * k);
+}
+
+// The block's arrays on the host, filled step by step, then uploaded at once.
+struct HostBlockMesh {
+  Vec3View::HostMirror x;
+  CellNodesView::HostMirror nodes;
+  CellFacesView::HostMirror neighbors, side, neighbor_face;
+  std::vector<Index> corner_offsets, corners;  // node -> corner CRS
+  Kokkos::View<int*, HostSpace> constrained;
+  Sym6View::HostMirror projector;
+  std::vector<Index> traction_offsets, traction_faces;  // node -> traction face CRS
+};
+
+// Node coordinates: block, random interior perturbation, then the mapping
+// (the draws in node order, three per interior node).
+Vec3View::HostMirror nodeCoordinates(const BlockSpec& spec, Index n_nodes) {
+  Vec3View::HostMirror x_host("lagremap::mesh::x_n", n_nodes);
+  const double dx = (spec.hi.x - spec.lo.x) / spec.nx;
+  const double dy = (spec.hi.y - spec.lo.y) / spec.ny;
+  const double dz = (spec.hi.z - spec.lo.z) / spec.nz;
+  std::mt19937 rng(spec.seed);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (int k = 0; k <= spec.nz; ++k)
+    for (int j = 0; j <= spec.ny; ++j)
+      for (int i = 0; i <= spec.nx; ++i) {
+        Vec3 x{spec.lo.x + i * dx, spec.lo.y + j * dy, spec.lo.z + k * dz};
+        const bool interior = i > 0 && i < spec.nx && j > 0 && j < spec.ny && k > 0 && k < spec.nz;
+        if (spec.perturbation > 0.0 && interior) {
+          x += Vec3{spec.perturbation * dx * unit(rng), spec.perturbation * dy * unit(rng),
+                    spec.perturbation * dz * unit(rng)};
+        }
+        if (spec.mapping) x = spec.mapping(x);
+        storeVec3(x_host, nodeId(spec, i, j, k), x);
+      }
+  return x_host;
+}
+
+// Cell -> node (VTK hex), cell -> neighbour and boundary side per face.
+void cellConnectivity(const BlockSpec& spec, Index n_cells, HostBlockMesh& host) {
+  host.nodes = CellNodesView::HostMirror("lagremap::mesh::cell_nodes", n_cells);
+  host.neighbors = CellFacesView::HostMirror("lagremap::mesh::cell_neighbors", n_cells);
+  host.side = CellFacesView::HostMirror("lagremap::mesh::cell_face_side", n_cells);
+  for (int k = 0; k < spec.nz; ++k)
+    for (int j = 0; j < spec.ny; ++j)
+      for (int i = 0; i < spec.nx; ++i) {
+        const int c = cellId(spec, i, j, k);
+        const int corner_nodes[8] = {nodeId(spec, i, j, k),
+                                     nodeId(spec, i + 1, j, k),
+                                     nodeId(spec, i + 1, j + 1, k),
+                                     nodeId(spec, i, j + 1, k),
+                                     nodeId(spec, i, j, k + 1),
+                                     nodeId(spec, i + 1, j, k + 1),
+                                     nodeId(spec, i + 1, j + 1, k + 1),
+                                     nodeId(spec, i, j + 1, k + 1)};
+        for (int p = 0; p < 8; ++p) host.nodes(c, p) = corner_nodes[p];
+        const bool at_lo[3] = {i == 0, j == 0, k == 0};
+        const bool at_hi[3] = {i == spec.nx - 1, j == spec.ny - 1, k == spec.nz - 1};
+        const int lo_neighbor[3] = {c - 1, c - spec.nx, c - spec.nx * spec.ny};
+        const int hi_neighbor[3] = {c + 1, c + spec.nx, c + spec.nx * spec.ny};
+        for (int axis = 0; axis < 3; ++axis) {
+          host.neighbors(c, 2 * axis) = at_lo[axis] ? -1 : lo_neighbor[axis];
+          host.neighbors(c, 2 * axis + 1) = at_hi[axis] ? -1 : hi_neighbor[axis];
+          host.side(c, 2 * axis) = at_lo[axis] ? 2 * axis : -1;
+          host.side(c, 2 * axis + 1) = at_hi[axis] ? 2 * axis + 1 : -1;
+        }
+      }
+}
+
+// The neighbour's face holding the same 4 nodes, found by search so it
+// holds for any cell orientation, not only the block's lo/hi pairing.
+CellFacesView::HostMirror neighborFaces(const CellNodesView::HostMirror& nodes_host,
+                                        const CellFacesView::HostMirror& neighbors_host,
+                                        Index n_cells) {
+  CellFacesView::HostMirror neighbor_face_host("lagremap::mesh::cell_neighbor_face", n_cells);
+  for (Index c = 0; c < n_cells; ++c)
+    for (int f = 0; f < 6; ++f) {
+      const Index n = neighbors_host(c, f);
+      neighbor_face_host(c, f) = -1;
+      for (int g = 0; n >= 0 && g < 6 && neighbor_face_host(c, f) < 0; ++g) {
+        int shared = 0;
+        for (int k = 0; k < 4; ++k)
+          for (int j = 0; j < 4; ++j)
+            shared += nodes_host(c, hex::faceNode(f, k)) == nodes_host(n, hex::faceNode(g, j));
+        if (shared == 4) neighbor_face_host(c, f) = g;
+      }
+      if (n >= 0 && neighbor_face_host(c, f) < 0) {
+        throw std::logic_error("cell neighbours share no face");
+      }
+    }
+  return neighbor_face_host;
+}
+
+// Node -> corner CRS, in corner-id order (deterministic gathers).
+void nodeCorners(const CellNodesView::HostMirror& nodes_host, Index n_cells, Index n_nodes,
+                 std::vector<Index>& corner_offsets, std::vector<Index>& corners) {
+  corner_offsets.assign(n_nodes + 1, 0);
+  for (Index c = 0; c < n_cells; ++c)
+    for (int p = 0; p < 8; ++p) ++corner_offsets[nodes_host(c, p) + 1];
+  for (Index n = 0; n < n_nodes; ++n) corner_offsets[n + 1] += corner_offsets[n];
+  corners.assign(corner_offsets.back(), 0);
+  std::vector<Index> fill(corner_offsets.begin(), corner_offsets.end() - 1);
+  for (Index c = 0; c < n_cells; ++c)
+    for (int p = 0; p < 8; ++p) corners[fill[nodes_host(c, p)]++] = 8 * c + p;
+}
+
+// Per node, the boundary sides it lies on, the outward normal of each (area
+// weighted over the node's corner faces on that side) and its traction faces.
+struct NodeSides {
+  std::vector<std::array<Vec3, kNumSides>> normal;
+  std::vector<unsigned> sides;  // bit s: on side s
+  std::vector<std::vector<Index>> traction_faces;
+};
+
+NodeSides nodeSides(const HostBlockMesh& host, const SideBoundaries& boundaries, Index n_cells,
+                    Index n_nodes) {
+  NodeSides out;
+  out.normal.resize(n_nodes);
+  out.sides.assign(n_nodes, 0u);
+  out.traction_faces.resize(n_nodes);
+  for (Index c = 0; c < n_cells; ++c) {
+    Vec3 x[8];
+    for (int p = 0; p < 8; ++p) x[p] = loadVec3(host.x, host.nodes(c, p));
+    for (int f = 0; f < 6; ++f) {
+      const int side = host.side(c, f);
+      if (side < 0) continue;
+      Vec3 q[4], w[4];
+      hex::faceNodes(x, f, q);
+      hex::faceCornerVectors(q, w);
+      for (int k = 0; k < 4; ++k) {
+        const Index node = host.nodes(c, hex::faceNode(f, k));
+        if ((out.sides[node] & (1u << side)) == 0) out.normal[node][side] = Vec3{0, 0, 0};
+        out.sides[node] |= 1u << side;
+        out.normal[node][side] += w[k];
+        if (boundaries[side].kind == BoundaryKind::Traction) {
+          out.traction_faces[node].push_back(6 * c + f);
+        }
+      }
+    }
+  }
+  return out;
+}
+
+// The velocity projector of a node on the boundary sides `sides`, and the
+// number of directions it constrains (n_constraints).
+SymMat3 nodeProjector(unsigned sides, const std::array<Vec3, kNumSides>& side_normal,
+                      const SideBoundaries& boundaries, int& n_constraints) {
+  // Orthonormal basis of the constrained directions (Gram-Schmidt); a fixed
+  // side constrains all three.
+  Vec3 basis[3];
+  n_constraints = 0;
+  for (int side = 0; side < kNumSides; ++side) {
+    if ((sides & (1u << side)) == 0) continue;
+    const BoundaryKind kind = boundaries[side].kind;
+    if (kind == BoundaryKind::Fixed) {
+      n_constraints = 3;
+      break;
+    }
+    if (kind != BoundaryKind::Wall) continue;
+    Vec3 normal = side_normal[side];
+    for (int b = 0; b < n_constraints; ++b) normal -= dot(normal, basis[b]) * basis[b];
+    const double length = norm(normal);
+    // Parallel planes (a node on both sides of a one-cell slab cannot happen;
+    // nearly coplanar sides of a mapped block can) add no new constraint.
+    if (length > 1e-8 * norm(side_normal[side]) && n_constraints < 3) {
+      basis[n_constraints++] = (1.0 / length) * normal;
+    }
+  }
+  SymMat3 projector = identitySym();
+  if (n_constraints == 3) {
+    projector = identitySym(0.0);
+  } else {
+    for (int b = 0; b < n_constraints; ++b) projector += outerSelf(basis[b], -1.0);
+  }
+  return projector;
+}
+
+// Boundary constraints (constrained flag, projector) and the node -> traction
+// face CRS of every node.
+void boundaryConstraints(const SideBoundaries& boundaries, Index n_cells, Index n_nodes,
+                         HostBlockMesh& host) {
+  const NodeSides node_sides = nodeSides(host, boundaries, n_cells, n_nodes);
+  host.constrained = Kokkos::View<int*, HostSpace>("lagremap::mesh::node_constrained", n_nodes);
+  host.projector = Sym6View::HostMirror("lagremap::mesh::node_projector", n_nodes);
+  host.traction_offsets.assign(n_nodes + 1, 0);
+  host.traction_faces.clear();
+  for (Index n = 0; n < n_nodes; ++n) {
+    int n_constraints = 0;
+    const SymMat3 projector =
+        nodeProjector(node_sides.sides[n], node_sides.normal[n], boundaries, n_constraints);
+    host.constrained(n) = n_constraints > 0 ? 1 : 0;
+    storeSym(host.projector, n, projector);
+    const std::vector<Index>& faces = node_sides.traction_faces[n];
+    host.traction_offsets[n + 1] = host.traction_offsets[n] + Index(faces.size());
+    host.traction_faces.insert(host.traction_faces.end(), faces.begin(), faces.end());
+  }
+}
+
+// Per side, the traction stress and the boundary kind, on the device.
+void uploadSides(const SideBoundaries& boundaries, Mesh& mesh) {
+  decltype(mesh.side_traction)::HostMirror traction_host("lagremap::mesh::side_traction");
+  for (int side = 0; side < kNumSides; ++side) {
+    const SymMat3& s = boundaries[side].traction_stress;
+    const double comps[6] = {s.xx, s.yy, s.zz, s.xy, s.yz, s.xz};
+    for (int i = 0; i < 6; ++i) traction_host(side, i) = comps[i];
+  }
+  mesh.side_traction = decltype(mesh.side_traction)("lagremap::mesh::side_traction");
+  Kokkos::deep_copy(mesh.side_traction, traction_host);
+  Kokkos::View<int[kNumSides], HostSpace> kind_host("lagremap::mesh::side_kind");
+  for (int side = 0; side < kNumSides; ++side) kind_host(side) = int(boundaries[side].kind);
+  mesh.side_kind = decltype(mesh.side_kind)("lagremap::mesh::side_kind");
+  Kokkos::deep_copy(mesh.side_kind, kind_host);
+}
+
+// The host arrays on the device.
+void uploadMesh(const HostBlockMesh& host, Mesh& mesh) {
+  upload(host.x, mesh.x_n);
+  upload(host.nodes, mesh.cell_nodes);
+  upload(host.neighbors, mesh.cell_neighbors);
+  upload(host.side, mesh.cell_face_side);
+  upload(host.neighbor_face, mesh.cell_neighbor_face);
+  upload(host.constrained, mesh.node_constrained);
+  upload(host.projector, mesh.node_projector);
+  mesh.node_corner_offsets = uploadList("lagremap::mesh::node_corner_offsets", host.corner_offsets);
+  mesh.node_corners = uploadList("lagremap::mesh::node_corners", host.corners);
+  mesh.node_traction_offsets =
+      uploadList("lagremap::mesh::node_traction_offsets", host.traction_offsets);
+  mesh.node_traction_faces = uploadList("lagremap::mesh::node_traction_faces", host.traction_faces);
+}
+
 }  // namespace
 
 Mesh buildBlockMesh(const BlockSpec& spec, const SideBoundaries& boundaries) {
@@ -41,176 +275,14 @@ Mesh buildBlockMesh(const BlockSpec& spec, const SideBoundaries& boundaries) {
   mesh.n_nodes = static_cast<Index>(n_nodes);
   mesh.n_cells = static_cast<Index>(n_cells);
 
-  auto node_id = [&](int i, int j, int k) { return i + (spec.nx + 1) * (j + (spec.ny + 1) * k); };
-  auto cell_id = [&](int i, int j, int k) { return i + spec.nx * (j + spec.ny * k); };
-
-  // --- node coordinates: block, random interior perturbation, then the mapping.
-  Vec3View::HostMirror x_host("lagremap::mesh::x_n", mesh.n_nodes);
-  const double dx = (spec.hi.x - spec.lo.x) / spec.nx;
-  const double dy = (spec.hi.y - spec.lo.y) / spec.ny;
-  const double dz = (spec.hi.z - spec.lo.z) / spec.nz;
-  std::mt19937 rng(spec.seed);
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  for (int k = 0; k <= spec.nz; ++k)
-    for (int j = 0; j <= spec.ny; ++j)
-      for (int i = 0; i <= spec.nx; ++i) {
-        Vec3 x{spec.lo.x + i * dx, spec.lo.y + j * dy, spec.lo.z + k * dz};
-        const bool interior = i > 0 && i < spec.nx && j > 0 && j < spec.ny && k > 0 && k < spec.nz;
-        if (spec.perturbation > 0.0 && interior) {
-          x += Vec3{spec.perturbation * dx * unit(rng), spec.perturbation * dy * unit(rng),
-                    spec.perturbation * dz * unit(rng)};
-        }
-        if (spec.mapping) x = spec.mapping(x);
-        storeVec3(x_host, node_id(i, j, k), x);
-      }
-
-  // --- cell -> node (VTK hex), cell -> neighbour and boundary side per face.
-  CellNodesView::HostMirror nodes_host("lagremap::mesh::cell_nodes", mesh.n_cells);
-  CellFacesView::HostMirror neighbors_host("lagremap::mesh::cell_neighbors", mesh.n_cells);
-  CellFacesView::HostMirror side_host("lagremap::mesh::cell_face_side", mesh.n_cells);
-  for (int k = 0; k < spec.nz; ++k)
-    for (int j = 0; j < spec.ny; ++j)
-      for (int i = 0; i < spec.nx; ++i) {
-        const int c = cell_id(i, j, k);
-        const int corner_nodes[8] = {node_id(i, j, k),
-                                     node_id(i + 1, j, k),
-                                     node_id(i + 1, j + 1, k),
-                                     node_id(i, j + 1, k),
-                                     node_id(i, j, k + 1),
-                                     node_id(i + 1, j, k + 1),
-                                     node_id(i + 1, j + 1, k + 1),
-                                     node_id(i, j + 1, k + 1)};
-        for (int p = 0; p < 8; ++p) nodes_host(c, p) = corner_nodes[p];
-        const bool at_lo[3] = {i == 0, j == 0, k == 0};
-        const bool at_hi[3] = {i == spec.nx - 1, j == spec.ny - 1, k == spec.nz - 1};
-        const int lo_neighbor[3] = {c - 1, c - spec.nx, c - spec.nx * spec.ny};
-        const int hi_neighbor[3] = {c + 1, c + spec.nx, c + spec.nx * spec.ny};
-        for (int axis = 0; axis < 3; ++axis) {
-          neighbors_host(c, 2 * axis) = at_lo[axis] ? -1 : lo_neighbor[axis];
-          neighbors_host(c, 2 * axis + 1) = at_hi[axis] ? -1 : hi_neighbor[axis];
-          side_host(c, 2 * axis) = at_lo[axis] ? 2 * axis : -1;
-          side_host(c, 2 * axis + 1) = at_hi[axis] ? 2 * axis + 1 : -1;
-        }
-      }
-
-  // --- the neighbour's face holding the same 4 nodes, found by search so it
-  // holds for any cell orientation, not only the block's lo/hi pairing.
-  CellFacesView::HostMirror neighbor_face_host("lagremap::mesh::cell_neighbor_face", mesh.n_cells);
-  for (Index c = 0; c < mesh.n_cells; ++c)
-    for (int f = 0; f < 6; ++f) {
-      const Index n = neighbors_host(c, f);
-      neighbor_face_host(c, f) = -1;
-      for (int g = 0; n >= 0 && g < 6 && neighbor_face_host(c, f) < 0; ++g) {
-        int shared = 0;
-        for (int k = 0; k < 4; ++k)
-          for (int j = 0; j < 4; ++j)
-            shared += nodes_host(c, hex::faceNode(f, k)) == nodes_host(n, hex::faceNode(g, j));
-        if (shared == 4) neighbor_face_host(c, f) = g;
-      }
-      if (n >= 0 && neighbor_face_host(c, f) < 0) {
-        throw std::logic_error("cell neighbours share no face");
-      }
-    }
-
-  // --- node -> corner CRS, in corner-id order (deterministic gathers).
-  std::vector<Index> corner_offsets(mesh.n_nodes + 1, 0);
-  for (Index c = 0; c < mesh.n_cells; ++c)
-    for (int p = 0; p < 8; ++p) ++corner_offsets[nodes_host(c, p) + 1];
-  for (Index n = 0; n < mesh.n_nodes; ++n) corner_offsets[n + 1] += corner_offsets[n];
-  std::vector<Index> corners(corner_offsets.back());
-  {
-    std::vector<Index> fill(corner_offsets.begin(), corner_offsets.end() - 1);
-    for (Index c = 0; c < mesh.n_cells; ++c)
-      for (int p = 0; p < 8; ++p) corners[fill[nodes_host(c, p)]++] = 8 * c + p;
-  }
-
-  // --- boundary: per node, the outward normal of each constrained side (area
-  // weighted over the node's corner faces on that side) and the traction faces.
-  std::vector<std::array<Vec3, kNumSides>> side_normal(mesh.n_nodes);
-  std::vector<unsigned> node_sides(mesh.n_nodes, 0u);
-  std::vector<std::vector<Index>> traction_faces(mesh.n_nodes);
-  for (Index c = 0; c < mesh.n_cells; ++c) {
-    Vec3 x[8];
-    for (int p = 0; p < 8; ++p) x[p] = loadVec3(x_host, nodes_host(c, p));
-    for (int f = 0; f < 6; ++f) {
-      const int side = side_host(c, f);
-      if (side < 0) continue;
-      Vec3 q[4], w[4];
-      hex::faceNodes(x, f, q);
-      hex::faceCornerVectors(q, w);
-      for (int k = 0; k < 4; ++k) {
-        const Index node = nodes_host(c, hex::faceNode(f, k));
-        if ((node_sides[node] & (1u << side)) == 0) side_normal[node][side] = Vec3{0, 0, 0};
-        node_sides[node] |= 1u << side;
-        side_normal[node][side] += w[k];
-        if (boundaries[side].kind == BoundaryKind::Traction) {
-          traction_faces[node].push_back(6 * c + f);
-        }
-      }
-    }
-  }
-  Kokkos::View<int*, HostSpace> constrained_host("lagremap::mesh::node_constrained", mesh.n_nodes);
-  Sym6View::HostMirror projector_host("lagremap::mesh::node_projector", mesh.n_nodes);
-  std::vector<Index> traction_offsets(mesh.n_nodes + 1, 0);
-  std::vector<Index> traction_list;
-  for (Index n = 0; n < mesh.n_nodes; ++n) {
-    // Orthonormal basis of the constrained directions (Gram-Schmidt); a fixed
-    // side constrains all three.
-    Vec3 basis[3];
-    int n_constraints = 0;
-    for (int side = 0; side < kNumSides; ++side) {
-      if ((node_sides[n] & (1u << side)) == 0) continue;
-      const BoundaryKind kind = boundaries[side].kind;
-      if (kind == BoundaryKind::Fixed) {
-        n_constraints = 3;
-        break;
-      }
-      if (kind != BoundaryKind::Wall) continue;
-      Vec3 normal = side_normal[n][side];
-      for (int b = 0; b < n_constraints; ++b) normal -= dot(normal, basis[b]) * basis[b];
-      const double length = norm(normal);
-      // Parallel planes (a node on both sides of a one-cell slab cannot happen;
-      // nearly coplanar sides of a mapped block can) add no new constraint.
-      if (length > 1e-8 * norm(side_normal[n][side]) && n_constraints < 3) {
-        basis[n_constraints++] = (1.0 / length) * normal;
-      }
-    }
-    SymMat3 projector = identitySym();
-    if (n_constraints == 3) {
-      projector = identitySym(0.0);
-    } else {
-      for (int b = 0; b < n_constraints; ++b) projector += outerSelf(basis[b], -1.0);
-    }
-    constrained_host(n) = n_constraints > 0 ? 1 : 0;
-    storeSym(projector_host, n, projector);
-    traction_offsets[n + 1] = traction_offsets[n] + Index(traction_faces[n].size());
-    traction_list.insert(traction_list.end(), traction_faces[n].begin(), traction_faces[n].end());
-  }
-  decltype(mesh.side_traction)::HostMirror traction_host("lagremap::mesh::side_traction");
-  for (int side = 0; side < kNumSides; ++side) {
-    const SymMat3& s = boundaries[side].traction_stress;
-    const double comps[6] = {s.xx, s.yy, s.zz, s.xy, s.yz, s.xz};
-    for (int i = 0; i < 6; ++i) traction_host(side, i) = comps[i];
-  }
-
-  upload(x_host, mesh.x_n);
-  upload(nodes_host, mesh.cell_nodes);
-  upload(neighbors_host, mesh.cell_neighbors);
-  upload(side_host, mesh.cell_face_side);
-  upload(neighbor_face_host, mesh.cell_neighbor_face);
-  upload(constrained_host, mesh.node_constrained);
-  upload(projector_host, mesh.node_projector);
-  mesh.node_corner_offsets = uploadList("lagremap::mesh::node_corner_offsets", corner_offsets);
-  mesh.node_corners = uploadList("lagremap::mesh::node_corners", corners);
-  mesh.node_traction_offsets =
-      uploadList("lagremap::mesh::node_traction_offsets", traction_offsets);
-  mesh.node_traction_faces = uploadList("lagremap::mesh::node_traction_faces", traction_list);
-  mesh.side_traction = decltype(mesh.side_traction)("lagremap::mesh::side_traction");
-  Kokkos::deep_copy(mesh.side_traction, traction_host);
-  Kokkos::View<int[kNumSides], HostSpace> kind_host("lagremap::mesh::side_kind");
-  for (int side = 0; side < kNumSides; ++side) kind_host(side) = int(boundaries[side].kind);
-  mesh.side_kind = decltype(mesh.side_kind)("lagremap::mesh::side_kind");
-  Kokkos::deep_copy(mesh.side_kind, kind_host);
+  HostBlockMesh host;
+  host.x = nodeCoordinates(spec, mesh.n_nodes);
+  cellConnectivity(spec, mesh.n_cells, host);
+  host.neighbor_face = neighborFaces(host.nodes, host.neighbors, mesh.n_cells);
+  nodeCorners(host.nodes, mesh.n_cells, mesh.n_nodes, host.corner_offsets, host.corners);
+  boundaryConstraints(boundaries, mesh.n_cells, mesh.n_nodes, host);
+  uploadMesh(host, mesh);
+  uploadSides(boundaries, mesh);
   ownEverything(mesh);
   return mesh;
 }
