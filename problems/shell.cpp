@@ -2,7 +2,9 @@
 // plastic, Mie-Gruneisen), PROBLEMS.md §5, inward with the incompressible
 // Howell-Ball profile V = -V0 (Ri / r) e_r (or the paper's text's V0 r / Ri).
 // Checks: the stopping radii (smallest inner radius reached, and the outer
-// radius then) against Howell & Ball's 50 mm / 78.1 mm (paper: 51 / 79 mm).
+// radius then) against Howell & Ball's energy balance for the run's
+// parameters (src/howell_ball.hpp; 50 mm / 78.1 mm at V0 = 417.1 m/s, paper:
+// 51 / 79 mm), the roundness and that the shell has stopped.
 // Lagrange mode: the shell alone on a polar hex mesh of a quarter annulus
 // Ri = 0.08, Ro = 0.1 (symmetry planes x = 0 and y = 0, one cell thick in z,
 // free inner and outer surfaces).
@@ -15,6 +17,8 @@
 #include <iomanip>
 
 #include "../src/diagnostics.hpp"
+#include "../src/howell_ball.hpp"
+#include "../src/materials.hpp"
 #include "../src/problem.hpp"
 
 namespace lagremap {
@@ -49,8 +53,10 @@ void declareShell(Config& config) {
     declareMeshKeys(config, 15, 90, 1);
     declareBoundaryKeys(config, {"free", "free", "symmetry", "symmetry", "symmetry", "symmetry"});
   }
-  config.addReal("check.inner_radius", 0.050, "m", "stopping inner radius (Howell & Ball)");
-  config.addReal("check.outer_radius", 0.0781, "m", "stopping outer radius (Howell & Ball)");
+  config.addReal("check.inner_radius", 0.0, "m",
+                 "stopping inner radius; 0: Howell & Ball for the run's parameters");
+  config.addReal("check.outer_radius", 0.0, "m",
+                 "stopping outer radius; 0: Howell & Ball for the run's parameters");
   config.addReal("check.radius_tolerance", 0.002, "m", "tolerance on the stopping radii");
 }
 
@@ -288,20 +294,40 @@ RadiusRange surfaceInnerRadii(const FinalFields& fields) {
   return range;
 }
 
-// The checks: stopping radii, roundness at t_end and the final inward speed.
+// Howell and Ball's stop for the run's shell, speed and profile.
+ShellStop expectedStop(const Config& config) {
+  const MaterialParams be = readHypoSolid(config, "be", "Be-hypo");
+  try {
+    return howellBallStop(be.rho0, be.yield_stress, config.real("shell.inner_radius"),
+                          config.real("shell.outer_radius"), config.real("shell.v0"),
+                          config.text("shell.profile") == "howell_ball");
+  } catch (const std::invalid_argument& error) {
+    throw ConfigError(std::string("shell: ") + error.what());
+  }
+}
+
+// The checks: stopping radii, roundness at t_end and the final inward speed,
+// against Howell and Ball's energy balance for the run's parameters (or the
+// radii the user gives). The radii are reached only once the run lasts past
+// the stop; the final speed is measured over the last 2% of the run, which
+// must lie after the stop (with 5% of its time to spare) to mean "stopped".
 std::vector<Check> shellChecks(const Config& config, double inner_min, double outer_at_stop,
                                const RadiusRange& inner, double inward_speed) {
   const bool remap = config.remapMode();
   const double tol = config.real("check.radius_tolerance");
+  const ShellStop stop = expectedStop(config);
+  const double user_inner = config.real("check.inner_radius");
+  const double user_outer = config.real("check.outer_radius");
   std::vector<Check> checks{
-      {"stopping_inner_radius", inner_min, config.real("check.inner_radius"), tol,
-       remap ? "smallest equal-area radius of the gas inside the shell over the run "
-               "(Howell & Ball 50 mm; paper 51 mm)"
-             : "smallest inner radius over the run (Howell & Ball 50 mm; paper 51 mm)"},
-      {"stopping_outer_radius", outer_at_stop, config.real("check.outer_radius"), tol,
-       remap ? "outer radius when the inner one stops, from the beryllium area at t_end "
-               "(H&B 78.1 mm; paper 79 mm)"
-             : "outer radius when the inner one stops, from the shell's area (H&B 78.1 mm)"},
+      {"stopping_inner_radius", inner_min, user_inner > 0.0 ? user_inner : stop.inner_radius, tol,
+       remap ? "smallest equal-area radius of the gas inside the shell over the run (paper 51 mm "
+               "at its V0)"
+             : "smallest inner radius over the run"},
+      {"stopping_outer_radius", outer_at_stop, user_outer > 0.0 ? user_outer : stop.outer_radius,
+       tol,
+       remap ? "outer radius when the inner one stops, from the beryllium area at t_end (paper "
+               "79 mm at its V0)"
+             : "outer radius when the inner one stops, from the shell's area"},
       {"inner_circularity", (inner.hi - inner.lo) / inner.lo, 0.0, remap ? 0.05 : 0.01,
        remap ? "(max - min) / min of the alpha = 1/2 inner radius along 32 rays at t_end"
              : "(max - min) / min of the inner-surface radius at t_end: the shell stays "
@@ -309,11 +335,27 @@ std::vector<Check> shellChecks(const Config& config, double inner_min, double ou
       {"final_inward_speed", inward_speed / config.real("shell.v0"), 0.0, 0.01,
        "mean inward speed of the inner surface over the last 2% of the run / V0 (0 when "
        "rebounding): the shell has stopped by t_end"}};
-  if (remap) {  // the paper's radii are its remap run's (PROBLEMS.md §5)
+  checks[0].source = user_inner > 0.0 ? "check.inner_radius (user)" : "Howell-Ball";
+  checks[1].source = user_outer > 0.0 ? "check.outer_radius (user)" : "Howell-Ball";
+  checks[2].source = "round";
+  checks[3].source = "at rest after the Howell-Ball stop";
+  const double t_end = config.real("t_end");
+  char stop_text[96];
+  std::snprintf(stop_text, sizeof stop_text, "Howell-Ball stop at %.4g us", stop.time * 1e6);
+  if (t_end < stop.time) {
+    for (int i : {0, 1}) {
+      checks[i].doesNotApply("t_end = " + config.text("t_end") + " s ends before the " + stop_text);
+    }
+  }
+  if (0.98 * t_end < 1.05 * stop.time) {
+    checks[3].doesNotApply("the last 2% of the run (from " + config.text("t_end") +
+                           " s x 0.98) is not after the " + stop_text + " with 5% to spare");
+  }
+  if (remap && !differenceFromDefaultCase(config).size()) {  // the paper's remap run
     checks[0].paper = kPaperInnerRadius;
     checks[1].paper = kPaperOuterRadius;
   }
-  setModeIndependentReferences(config, checks);  // Howell & Ball's radii, in both modes
+  setModeIndependentReferences(config, checks);
   return checks;
 }
 

@@ -168,6 +168,21 @@ std::vector<Check> finishTaylor(const Config& config, const FinalFields& fields,
   // The remap length is compared with the paper's Lagrange one (its Fig. 6).
   if (remap) checks[0].lagrange_reference = kPaperLengthLagrange;
   setModeIndependentReferences(config, checks);
+  // The paper's length is that of its case at its t_end (a reference the
+  // user sets with check.reference_length is theirs); the bar has come to
+  // rest only at the end of the case.
+  const Param& reference = config.params().at("check.reference_length");
+  if (reference.value == reference.default_value) {
+    markDefaultCaseOnly(config, checks, {"final_length"}, "paper, default parameters only");
+  } else {
+    checks[0].source = "check.reference_length (user)";
+  }
+  checks[1].source = "at rest by the case's t_end";
+  const Param& t_end = config.params().at("t_end");
+  if (t_end.value != t_end.default_value) {
+    checks[1].doesNotApply("an end-state check; t_end = " + t_end.value + " is not the case's " +
+                           t_end.default_value);
+  }
   return checks;
 }
 

@@ -434,7 +434,9 @@ def check_text(check: Optional[dict], label: str) -> Optional[str]:
     extras = []
     if "tolerance" in check:
         extras.append(f"tolerance {fmt_num(check['tolerance'], '.2e')}")
-    if "pass" in check:
+    if check.get("applies") is False:
+        extras.append("n/a: " + check.get("not_applicable", "not this case"))
+    elif "pass" in check:
         extras.append("PASS" if check["pass"] else "FAIL")
     return text + (f" ({', '.join(extras)})" if extras else "")
 
@@ -1448,7 +1450,10 @@ def comparison_rows(run: Run) -> List[List[str]]:
         ours = lagrange.check(name) or {}
         numbers = (check.get("value"), check.get("reference"), ours.get("value"),
                    check.get("lagrange_reference"), check.get("paper"))
-        verdict = {True: "pass", False: "FAIL"}.get(check.get("pass"), "?")
+        verdict = ("n/a" if check.get("applies") is False
+                   else {True: "pass", False: "FAIL"}.get(check.get("pass"), "?"))
+        if check.get("source"):
+            verdict += f" ({check['source']})"
         rows.append([name] + [fmt_num(v, ".5g", "–") for v in numbers] + [verdict])
     return rows
 

@@ -74,8 +74,12 @@ void printReport(const RunOptions& options, const RunResult& result) {
   std::printf("drift (relative, boundary work subtracted): mass %.2e  momentum %.2e  energy %.2e\n",
               result.drift_mass, result.drift_momentum, result.drift_energy);
   for (const auto& check : result.checks) {
-    std::printf("check %-22s %-13.6g reference %-12.6g tolerance %-10.3g %s\n", check.name.c_str(),
-                check.value, check.reference, check.tolerance, check.pass() ? "pass" : "FAIL");
+    const char* verdict = !check.counts() ? "n/a" : check.pass() ? "pass" : "FAIL";
+    std::printf("check %-22s %-13.6g reference %-12.6g tolerance %-10.3g %s", check.name.c_str(),
+                check.value, check.reference, check.tolerance, verdict);
+    if (!check.source.empty()) std::printf("  [%s]", check.source.c_str());
+    if (!check.counts()) std::printf("  (%s)", check.not_applicable.c_str());
+    std::printf("\n");
   }
   std::printf("FOM: %.4g cell-steps/s (%s)\n", result.cell_steps_per_second,
               executionSpaceText().c_str());

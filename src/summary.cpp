@@ -122,6 +122,9 @@ void writeChecksAndKeys(JsonWriter& json, const Config& config, const RunResult&
         .value("tolerance", check.tolerance);
     if (check.lagrange_reference) json.value("lagrange_reference", *check.lagrange_reference);
     if (check.paper) json.value("paper", *check.paper);
+    if (!check.source.empty()) json.value("source", check.source);
+    json.value("applies", check.applies);
+    if (!check.applies) json.value("not_applicable", check.not_applicable);
     json.value("pass", check.pass()).value("note", check.note).endObject();
   }
   json.endObject();

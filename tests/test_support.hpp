@@ -48,6 +48,14 @@ inline CommandResult runLagremap(const std::string& args) {
   return result;
 }
 
+// The whole text of a file ("" if it cannot be read).
+inline std::string readFile(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
 // A fresh scratch directory for one test.
 inline std::string scratchDir(const std::string& name) {
   const auto dir = std::filesystem::temp_directory_path() /
