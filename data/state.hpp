@@ -13,6 +13,14 @@ using MaterialView = DeviceView<MaterialParams*>;
 // in registers (the remap's integrals, the mixed cells' volume ratios).
 constexpr int kMaxMaterials = 8;
 
+// How a mixed cell's materials share its volume change in the Lagrangian
+// phase (docs/method.md §4): Relaxation (the default: shared by
+// compressibility, pressure / normal-stress relaxation, solid bodies take
+// their own normal stretch, dissipation by mass) or EqualStrain (the source
+// paper's: volume fractions constant, every material compressed at the cell's
+// rate, reversible work plus dissipation shared by volume fraction).
+enum class MixtureClosure : int { Relaxation = 0, EqualStrain = 1 };
+
 struct State {
   // Conserved per cell: mass (constant in the Lagrangian phase), velocity,
   // specific total energy.
@@ -30,6 +38,7 @@ struct State {
   // carried (mass, energy) but has no say in the cell's stress (its density
   // is the ratio of two tiny remapped numbers). 0 in lagrange mode.
   double alpha_trace = 0.0;
+  MixtureClosure closure = MixtureClosure::Relaxation;
   MatRealView alpha_ck;  // volume fraction (docs/method.md §4.2: shared volume changes)
   MatRealView m_ck;      // mass
   MatRealView e_ck;      // specific internal energy

@@ -75,6 +75,7 @@ KOKKOS_INLINE_FUNCTION bool takesOwnNormalStretch(const MaterialParams& material
 }
 // ... and its interface normal, known from the last remap.
 KOKKOS_INLINE_FUNCTION bool isSolidBody(const State& s, Index c, int k, Vec3& normal) {
+  if (s.closure == MixtureClosure::EqualStrain) return false;  // all at the cell's strain
   if (!takesOwnNormalStretch(s.materials(k), s.alpha_ck0(c, k), s.alpha_trace)) return false;
   if (c >= Index(s.n_ck.extent(0))) return false;
   normal = Vec3{s.n_ck(c, k, 0), s.n_ck(c, k, 1), s.n_ck(c, k, 2)};
@@ -121,6 +122,7 @@ KOKKOS_INLINE_FUNCTION double relaxationVolume(const State& s, Index c, int k) {
 }
 
 KOKKOS_INLINE_FUNCTION void shareVolumeChange(const State& s, Index c, double volume) {
+  if (s.closure == MixtureClosure::EqualStrain) return;  // alpha^k unchanged
   double weight_sum = 0.0;
   int present = 0;
   for (int k = 0; k < s.n_materials; ++k) {

@@ -458,7 +458,7 @@ namespace detail {
 struct MixedCellBudget {
   double own_ratio[kMaxMaterials];
   double dissipation = 0.0;
-  double present_mass = 0.0;
+  double present_mass = 0.0, present_alpha = 0.0;
   double condensed_mass = 0.0;  // not ideal gases: their energy may go negative, in tension
   double gas_heat = 0.0;        // the gases' positive internal energy
 };
@@ -469,14 +469,16 @@ struct MixedCellBudget {
 // does; what the cap leaves out goes to D, shared by mass).
 KOKKOS_FORCEINLINE_FUNCTION void ownVolumeRatios(const State& s, Index c, double volume_change,
                                                  double own_ratio[]) {
+  const bool equal_strain = s.closure == MixtureClosure::EqualStrain;
   double weight_sum = 0.0;  // compressibility weights of the step start
-  for (int k = 0; k < s.n_materials; ++k) {
+  for (int k = 0; k < s.n_materials && !equal_strain; ++k) {
     if (s.alpha_ck(c, k) > 0.0) weight_sum += s.w_ck0(c, k);
   }
   double relax[kMaxMaterials] = {};
-  relaxationVolumes(s, c, relax);
+  if (!equal_strain) relaxationVolumes(s, c, relax);
   for (int k = 0; k < s.n_materials; ++k) {
     if (!(s.alpha_ck(c, k) > 0.0)) continue;
+    // (equal strain: alpha^k of the volume change, the cell's rate)
     const double share = weight_sum > 0.0 ? s.w_ck0(c, k) / weight_sum : s.alpha_ck(c, k);
     const double start_volume = s.alpha_ck0(c, k) * s.vol_c0(c);
     const double own_change = share * volume_change + relax[k];
@@ -503,7 +505,7 @@ KOKKOS_FORCEINLINE_FUNCTION Mat3 materialGradient(const State& s, Index c, int k
 KOKKOS_FORCEINLINE_FUNCTION double materialWork(const State& s, Index c, int k,
                                                 const Mat3& gradient_k, double own_ratio,
                                                 double dt_stage) {
-  if (s.m_ck(c, k) < kMassTrace * s.m_c(c)) return 0.0;
+  if (s.closure == MixtureClosure::Relaxation && s.m_ck(c, k) < kMassTrace * s.m_c(c)) return 0.0;
   const double start_volume = s.alpha_ck0(c, k) * s.vol_c0(c);
   return -s.p_ck(c, k) * (own_ratio - 1.0) * start_volume +
          dt_stage * s.vol_c(c) * stressPower(s, c, k, gradient_k, 0.0);
@@ -517,6 +519,8 @@ KOKKOS_FORCEINLINE_FUNCTION double materialWork(const State& s, Index c, int k,
 // mass, and only without them to the gases by their internal energies.
 KOKKOS_FORCEINLINE_FUNCTION double dissipationShare(const State& s, Index c, int k,
                                                     const MixedCellBudget& budget) {
+  // the paper's split (DESIGN §3): by volume fraction
+  if (s.closure == MixtureClosure::EqualStrain) return s.alpha_ck(c, k) / budget.present_alpha;
   const bool condensed = s.materials(k).eos != EosKind::IdealGas;
   if (budget.dissipation < 0.0 && budget.condensed_mass > 0.0) {
     return condensed ? s.m_ck(c, k) / budget.condensed_mass : 0.0;
@@ -538,6 +542,7 @@ KOKKOS_FORCEINLINE_FUNCTION void mixedCellBudget(const State& s, Index c, double
     const double alpha = s.alpha_ck(c, k);
     if (!(alpha > 0.0)) continue;
     budget.present_mass += s.m_ck(c, k);
+    budget.present_alpha += alpha;
     if (s.materials(k).eos != EosKind::IdealGas) {
       budget.condensed_mass += s.m_ck(c, k);
     } else if (s.e_ck0(c, k) > 0.0) {

@@ -22,6 +22,12 @@ Config declareConfig(const Problem& problem, const std::string& mode) {
     config.addReal("remap.alpha_floor", 1e-10, "-",
                    "volume fraction below which a material is dropped from a cell (mass and "
                    "energy kept)");
+    config.addChoice(
+        "mixture.closure", "relaxation", {"relaxation", "equal_strain"},
+        "mixed cells in the Lagrangian phase: relaxation (volume changes shared by "
+        "compressibility, pressures and a solid's normal stress relaxed, dissipation by "
+        "mass) or equal_strain (the paper's: volume fractions constant, every material "
+        "at the cell's strain rate, dissipation by volume fraction); docs/method.md §4");
     config.addReal("remap.alpha_trace", 1e-3, "-",
                    "volume fraction below which a material of a mixed cell is a trace: carried, "
                    "but left out of the cell's stress and sound speed");
@@ -204,6 +210,8 @@ RemapControls readRemapControls(const Config& config, State& state) {
   controls.beta_alpha = config.real("remap.beta");
   controls.alpha_floor = config.real("remap.alpha_floor");
   state.alpha_trace = config.real("remap.alpha_trace");
+  state.closure = config.text("mixture.closure") == "equal_strain" ? MixtureClosure::EqualStrain
+                                                                   : MixtureClosure::Relaxation;
   if (!(state.alpha_trace >= 0.0 && state.alpha_trace < 0.5 / state.n_materials)) {
     throw ConfigError("remap.alpha_trace must be in [0, 0.5 / number of materials)");
   }
