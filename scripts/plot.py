@@ -167,6 +167,7 @@ class Run:
         self.dir = directory
         self.summary = summary
         self.partner: Optional["Run"] = None
+        self.extras: List["Run"] = []  # --also: more runs of the problem to overlay
         self._tables: Dict[str, Dict[str, np.ndarray]] = {}
         self._snapshots: Optional[List["Snapshot"]] = None
 
@@ -336,6 +337,7 @@ MODE_STYLE = {
     "remap": {"ls": "--", "color": "tab:red"},
 }
 SECOND_STYLE = {"ls": ":", "color": "tab:green"}  # a compared run of the same mode
+EXTRA_STYLES = [{"ls": "-.", "color": "tab:purple"}, {"ls": ":", "color": "tab:orange"}]
 LINE_WORDS = {"-": "solid", "--": "dashed", ":": "dotted"}
 
 
@@ -360,10 +362,21 @@ def overlay_runs(run: Run) -> List[Curve]:
         label = r.mode
         if same_mode:
             label += f" ({os.path.basename(os.path.normpath(r.dir))})"
+        elif closure_of(r) and any(closure_of(x) for x in run.extras):
+            label += f" ({closure_of(r)})"
         style = dict(SECOND_STYLE if same_mode and i == 1
                      else MODE_STYLE.get(r.mode, MODE_STYLE["lagrange"]))
         curves.append(Curve(r, label, style))
+    # further runs of the same problem (--also: e.g. the other mixed-cell closure)
+    for i, r in enumerate(run.extras):
+        label = f"{r.mode} ({closure_of(r) or os.path.basename(os.path.normpath(r.dir))})"
+        curves.append(Curve(r, label, dict(EXTRA_STYLES[i % len(EXTRA_STYLES)])))
     return curves
+
+
+def closure_of(run: Run) -> Optional[str]:
+    """The mixed-cell closure of a remap run (summary's mixture.closure)."""
+    return ((run.summary or {}).get("config") or {}).get("mixture.closure")
 
 
 def curve_tables(run: Run, name: str, columns: List[str]) -> List[Tuple[Curve, Dict[str, np.ndarray]]]:
@@ -1536,6 +1549,9 @@ def main(argv: Optional[List[str]] = None) -> int:
                         help="a run of the same problem (normally in lagrange mode) to "
                              "overlay: lagrange solid, remap dashed.  Default for a remap "
                              "run: DIR_lagrange or PROBLEM_lagrange next to DIR, if present")
+    parser.add_argument("--also", metavar="DIR", action="append", default=[],
+                        help="another run of the same problem to overlay too (repeatable), "
+                             "e.g. the other mixed-cell closure of a remap run")
     parser.add_argument("--no-compare", action="store_true",
                         help="draw DIR's run alone (no search for a lagrange run)")
     parser.add_argument("--show-list", action="store_true",
@@ -1556,6 +1572,11 @@ def main(argv: Optional[List[str]] = None) -> int:
 
     if not args.no_compare:
         run.partner = find_partner(run, args.compare, auto=True)
+    for extra in args.also:
+        other = read_run(extra)
+        if other.problem != run.problem:
+            fail(f"--also: {extra} is a '{other.problem}' run, not '{run.problem}'")
+        run.extras.append(other)
     todo = [p for p in candidates if run.has(p.source) and p.applies(run)]
     if todo:
         try:

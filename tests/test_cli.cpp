@@ -252,6 +252,22 @@ TEST(CommandLine, ChecksFollowTheParameters) {
   const std::string length = checkOf(testing::readFile(dir + "/t/summary.json"), "final_length");
   EXPECT_NE(length.find("\"applies\": false"), std::string::npos) << length;
   EXPECT_NE(length.find("this run has bar.vx = "), std::string::npos) << length;
+  // sod, sedov and pile follow their states, energy and load (and pass)
+  auto sod = runLagremap("--problem sod --set left.p=2 --set left.rho=1.5 --quiet --output " + dir +
+                         "/sod");
+  EXPECT_EQ(sod.exit_code, 0) << sod.output;
+  auto sedov = runLagremap("--problem sedov --scale 0.5 --set blast.energy=1.2 --quiet --output " +
+                           dir + "/sedov");
+  EXPECT_EQ(sedov.exit_code, 0) << sedov.output;
+  const std::string radius =
+      checkOf(testing::readFile(dir + "/sedov/summary.json"), "shock_radius");
+  EXPECT_GT(numberAfter(radius, "reference"), 1.05) << radius;  // the default E gives 1
+  auto pile =
+      runLagremap("--problem pile --set bc.xmax.sigma_xx=-2e7 --quiet --output " + dir + "/pile");
+  EXPECT_EQ(pile.exit_code, 0) << pile.output;
+  const std::string plateau =
+      checkOf(testing::readFile(dir + "/pile/summary.json"), "wall_stress_plateau");
+  EXPECT_NEAR(numberAfter(plateau, "reference"), -4e7, 1.0) << plateau;
   // an applicable check that fails is still exit code 1
   auto failing =
       runLagremap("--problem sod --set check.l1_density_bound=1e-9 --quiet --output " + dir + "/f");
