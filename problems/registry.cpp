@@ -42,8 +42,7 @@ std::string differenceFromDefaultCase(const Config& config) {
   for (const auto& [key, param] : config.params()) {
     const bool resolution = param.cell_count || param.cell_length || key.rfind("mesh.", 0) == 0;
     const bool controls = key.rfind("numerics.", 0) == 0 || key.rfind("remap.", 0) == 0 ||
-                          key.rfind("mixture.", 0) == 0 ||
-                          key.rfind("check.", 0) == 0;
+                          key.rfind("mixture.", 0) == 0 || key.rfind("check.", 0) == 0;
     if (resolution || controls || param.value == param.default_value) continue;
     return key + " = " + param.value + " (case: " + param.default_value + ")";
   }

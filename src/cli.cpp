@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <iostream>
 
 #include "kokkos_session.hpp"
@@ -24,40 +25,25 @@ std::string exactText(double value) {
   return text;
 }
 
-// Range checks of numeric options whose message names the bound in a few
-// digits ("must be positive, got 0"): CLI11's own spell out DBL_MAX in full.
-CLI::Validator numberAbove(double bound, bool or_equal) {
-  char bound_text[32];
-  std::snprintf(bound_text, sizeof bound_text, "%g", bound);
-  const std::string rule = bound == 0.0
-                               ? (or_equal ? "non-negative" : "positive")
-                               : std::string(or_equal ? "at least " : "above ") + bound_text;
+// Range check of a numeric option whose message names the rule in a few
+// words ("must be positive, got 0"): CLI11's own spell out DBL_MAX in full.
+CLI::Validator numberIn(const std::string& rule, const std::function<bool(double)>& inside) {
   return CLI::Validator(
       [=](std::string& text) -> std::string {
         char* end = nullptr;
         const double value = std::strtod(text.c_str(), &end);
-        if (text.empty() || end != text.c_str() + text.size())
+        if (text.empty() || end != text.c_str() + text.size()) {
           return "'" + text + "' is not a number";
-        const bool inside = or_equal ? value >= bound : value > bound;
-        return inside ? "" : "must be " + rule + ", got " + text;
+        }
+        return inside(value) ? "" : "must be " + rule + ", got " + text;
       },
-      rule == "positive"       ? "POSITIVE"
-      : rule == "non-negative" ? "NONNEGATIVE"
-                               : "NUMBER");
+      rule);
 }
-
-CLI::Validator numberBetween(double lo, double hi) {
-  char rule[64];
-  std::snprintf(rule, sizeof rule, "between %g and %g", lo, hi);
-  return CLI::Validator(
-      [=](std::string& text) -> std::string {
-        char* end = nullptr;
-        const double value = std::strtod(text.c_str(), &end);
-        if (text.empty() || end != text.c_str() + text.size())
-          return "'" + text + "' is not a number";
-        return value >= lo && value <= hi ? "" : std::string("must be ") + rule + ", got " + text;
-      },
-      "NUMBER");
+CLI::Validator positiveNumber() {
+  return numberIn("positive", [](double v) { return v > 0.0; });
+}
+CLI::Validator nonNegativeNumber() {
+  return numberIn("non-negative", [](double v) { return v >= 0.0; });
 }
 
 int badInput(const std::string& message) {
@@ -100,10 +86,10 @@ void addOptions(CLI::App& app, CommandLine& line) {
   app.add_option("--problem", line.problem, "problem to run (see --list)");
   app.add_option("--mode", line.mode, "lagrange (pure Lagrangian) or remap (Lagrange-Remap)")
       ->check(CLI::IsMember({"lagrange", "remap"}));
-  app.add_option("--scale", line.scale, "multiply every cell count by S")
-      ->check(numberAbove(0.0, false));
-  app.add_option("--t-end", line.t_end, "final time [s]")->check(numberAbove(0.0, false));
-  app.add_option("--cfl", line.cfl, "CFL number")->check(numberBetween(1e-6, 1.0));
+  app.add_option("--scale", line.scale, "multiply every cell count by S")->check(positiveNumber());
+  app.add_option("--t-end", line.t_end, "final time [s]")->check(positiveNumber());
+  app.add_option("--cfl", line.cfl, "CFL number")
+      ->check(numberIn("between 1e-06 and 1", [](double v) { return v >= 1e-6 && v <= 1.0; }));
   app.add_option("--order", line.order, "1 or 2")->check(CLI::IsMember({1, 2}));
   app.add_option("--set", line.assignments, "set a problem or numerics key: --set key=value")
       ->allow_extra_args(false);
@@ -113,10 +99,10 @@ void addOptions(CLI::App& app, CommandLine& line) {
   app.add_option("--output-times", line.output_times, "snapshot times, comma separated [s]")
       ->delimiter(',');
   app.add_option("--output-every", line.output_every, "snapshot every N steps")
-      ->check(numberAbove(0.0, true));
+      ->check(nonNegativeNumber());
   app.add_option("--checkpoint-every", line.checkpoint_every,
                  "write <output>/checkpoint.h5 every N steps (and when a run fails)")
-      ->check(numberAbove(0.0, true));
+      ->check(nonNegativeNumber());
   app.add_option("--restart", line.restart_file, "continue the run saved in this checkpoint file");
   app.add_flag("--quiet", line.quiet, "no progress line");
   app.add_flag("--list", line.list, "list the built-in problems");

@@ -442,8 +442,11 @@ void updateMaterialsOfFirstCell(const Mesh& mesh, const State& state, double dt,
   Kokkos::fence();
 }
 
-TEST(MixedCell, EachMaterialWorksByItsOwnPressureAndPressuresRelax) {
-  BlockSpec block;  // one cell, not of unit volume (the work carries v)
+// One free cell (0.5 x 0.4 x 0.3: not of unit volume, the work carries v) of
+// two gases out of pressure equilibrium: alpha 0.3 / 0.7, gamma 1.4 / 5/3,
+// p_a = 2.4, p_b = 1/3, moving at `velocity`.
+ProblemSetup twoGasCell(const Vec3& velocity) {
+  BlockSpec block;
   block.hi = {0.5, 0.4, 0.3};
   SideBoundaries sides;
   for (auto& side : sides) side.kind = BoundaryKind::Free;
@@ -456,7 +459,12 @@ TEST(MixedCell, EachMaterialWorksByItsOwnPressureAndPressuresRelax) {
   setup.cells.alpha_k = {0.3, 0.7};
   setup.cells.rho_k = {2.0, 0.5};
   setup.cells.e_k = {3.0, 1.0};  // p_a = 2.4, p_b = 1/3: out of pressure equilibrium
-  setup.cells.v = {Vec3{0, 0, 0}};
+  setup.cells.v = {velocity};
+  return setup;
+}
+
+TEST(MixedCell, EachMaterialWorksByItsOwnPressureAndPressuresRelax) {
+  ProblemSetup setup = twoGasCell(Vec3{0, 0, 0});
   State state = allocateState(setup.mesh, false);
   initializeState(setup, state);
   PhaseTimers timers;
@@ -797,20 +805,7 @@ TEST(MixedCell, MovingContactKeepsPressureAndVelocityUniform) {
 // energies follow the paper's split: m^k de^k = -p^k alpha^k dv + (alpha^k /
 // sum alpha) D, D the cell's energy change less the reversible work.
 TEST(MixedCell, EqualStrainKeepsVolumeFractionsAndSplitsEnergyByVolume) {
-  BlockSpec block;  // one cell, not of unit volume (the work carries v)
-  block.hi = {0.5, 0.4, 0.3};
-  SideBoundaries sides;
-  for (auto& side : sides) side.kind = BoundaryKind::Free;
-  ProblemSetup setup;
-  setup.mesh = buildBlockMesh(block, sides);
-  MaterialParams gas_a, gas_b;
-  gas_a.gamma = 1.4;
-  gas_b.gamma = 5.0 / 3.0;
-  setup.materials = {gas_a, gas_b};
-  setup.cells.alpha_k = {0.3, 0.7};
-  setup.cells.rho_k = {2.0, 0.5};
-  setup.cells.e_k = {3.0, 1.0};  // p_a = 2.4, p_b = 1/3: out of pressure equilibrium
-  setup.cells.v = {Vec3{0.2, -0.1, 0.05}};
+  ProblemSetup setup = twoGasCell(Vec3{0.2, -0.1, 0.05});
   State state = allocateState(setup.mesh, false);
   initializeState(setup, state);
   state.closure = MixtureClosure::EqualStrain;
