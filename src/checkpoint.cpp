@@ -142,6 +142,7 @@ void writeCheckpoint(const std::string& path, const Mesh& mesh, const State& sta
     visitNumbers(loop, step, [&](const char* name, double& value) {
       io::writeScalarAttribute(file.get(), name, value, temp);
     });
+    io::writeScalarAttribute(file.get(), "dt_stable_max", loop.dt_stable_max, temp);
     {
       Handle cell_group = group(file.get(), "cells", true, temp);
       for (const FieldRef& field : evolvedCellFields(state)) {
@@ -211,6 +212,11 @@ LoopState readCheckpoint(const std::string& path, Mesh& mesh, State& state,
   visitNumbers(loop, step, [&](const char* name, double& value) {
     value = io::readScalarAttribute(file.get(), name, path);
   });
+  // (checkpoints before 2026-12-02 have none: the restart's own stable dt
+  // starts the record)
+  loop.dt_stable_max = H5Aexists(file.get(), "dt_stable_max") > 0
+                           ? io::readScalarAttribute(file.get(), "dt_stable_max", path)
+                           : 0.0;
   loop.step = long(step);
   if (!(loop.time >= 0.0) || loop.step < 0 || !(loop.dt_prev >= 0.0)) {
     throw std::runtime_error("checkpoint '" + path + "' has an impossible time or step");

@@ -19,6 +19,7 @@ namespace lagremap {
 struct LoopState {
   std::string problem, mode;
   double time = 0.0, dt_prev = 0.0;
+  double dt_stable_max = 0.0;  // largest stable dt so far (Numerics::dt_drop_fraction)
   long step = 0;
   Vec3 impulse{0, 0, 0};  // boundary impulse and work so far (conservation audit)
   double work = 0.0, mass_in = 0.0;

@@ -40,6 +40,9 @@ Config declareConfig(const Problem& problem, const std::string& mode) {
   config.addReal("numerics.dt_initial_factor", 0.1, "-", "first dt as a fraction of the stable dt");
   config.addReal("numerics.dt_min_fraction", 1e-12, "-",
                  "the run stops when dt falls below this fraction of t_end");
+  config.addReal("numerics.dt_drop_fraction", 1e-2, "-",
+                 "the run stops when its stable dt falls below this fraction of the largest "
+                 "stable dt it has had (a time step collapse; 0: never)");
   config.addInteger("numerics.max_steps", 10000000, "the run stops after this many steps");
   config.addChoice("numerics.gather", "crs", {"crs", "atomics"},
                    "node sums: node->corner CRS (deterministic) or atomic scatter");
@@ -54,6 +57,7 @@ Numerics readNumerics(const Config& config) {
   numerics.dt_growth = config.real("numerics.dt_growth");
   numerics.dt_initial_factor = config.real("numerics.dt_initial_factor");
   numerics.dt_min = config.real("numerics.dt_min_fraction") * config.real("t_end");
+  numerics.dt_drop_fraction = config.real("numerics.dt_drop_fraction");
   numerics.max_steps = config.integer("numerics.max_steps");
   numerics.gather = config.text("numerics.gather") == "atomics" ? Gather::Atomics : Gather::Crs;
   if (!(numerics.step.cfl > 0.0 && numerics.step.cfl <= 1.0)) {
@@ -65,6 +69,9 @@ Numerics readNumerics(const Config& config) {
   if (!(numerics.dt_growth >= 1.0)) throw ConfigError("numerics.dt_growth must be >= 1");
   if (!(numerics.dt_initial_factor > 0.0 && numerics.dt_initial_factor <= 1.0)) {
     throw ConfigError("numerics.dt_initial_factor must be in (0, 1]");
+  }
+  if (!(numerics.dt_drop_fraction >= 0.0 && numerics.dt_drop_fraction < 1.0)) {
+    throw ConfigError("numerics.dt_drop_fraction must be in [0, 1)");
   }
   if (numerics.max_steps < 1) throw ConfigError("numerics.max_steps must be >= 1");
   if (!(config.real("t_end") > 0.0)) throw ConfigError("t_end must be > 0");

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 #include "diagnostics.hpp"
@@ -22,6 +23,12 @@ namespace {
 
 const char* limitReason(const StepLimit& limit) {
   return limit.loc % kLimitCodes == kLimitVolume ? "volume" : "cfl";
+}
+
+std::string shortNumber(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", value);
+  return text;
 }
 
 }  // namespace
@@ -125,10 +132,19 @@ std::string Simulation::stopReason(const TimeStepChoice& choice) const {
     return "step " + std::to_string(loop_.step) +
            ": numerics.max_steps reached at t = " + std::to_string(loop_.time);
   }
+  const std::string limited_by =
+      std::string(limitReason(limit_)) + " limited, cell " + std::to_string(limit_.loc / kLimitCodes);
   if (choice.dt < numerics_.dt_min && !choice.lands_on_end() && !choice.lands_on_output()) {
     return "step " + std::to_string(loop_.step + 1) +
-           ": time step collapse, dt = " + std::to_string(choice.dt) + " (" + choice.reason +
+           ": time step collapse, dt = " + shortNumber(choice.dt) + " (" + choice.reason +
            " limited, cell " + std::to_string(limit_.loc / kLimitCodes) + ")";
+  }
+  if (limit_.val < numerics_.dt_drop_fraction * loop_.dt_stable_max) {
+    return "step " + std::to_string(loop_.step + 1) + ": time step collapse at t = " +
+           shortNumber(loop_.time) + ", stable dt " + shortNumber(limit_.val) + " s below " +
+           shortNumber(numerics_.dt_drop_fraction) + " of the run's largest, " +
+           shortNumber(loop_.dt_stable_max) + " s (" + limited_by +
+           "; numerics.dt_drop_fraction)";
   }
   return "";
 }
@@ -152,6 +168,9 @@ void Simulation::advance(const TimeStepChoice& choice) {
   }
   loop_.time = choice.lands_on_end() ? t_end_ : loop_.time + choice.dt;
   loop_.dt_prev = choice.dt;
+  // (from the first step on: the set-up's candidate has no volume-rate limit
+  // yet, sedov's is 8 times the next one)
+  loop_.dt_stable_max = std::max(loop_.dt_stable_max, limit_.val);
   loop_.step = next;
   if (choice.lands_on_output()) {
     loop_.time = pending_outputs_.front();

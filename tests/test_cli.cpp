@@ -329,6 +329,11 @@ TEST(CommandLine, FailureMidRunGivesExitCodeThreeAndWritesLastGoodState) {
       {"--problem sod --set numerics.max_steps=5", "max_steps"},
       // A dt floor above the stable dt: the step collapses below it at once.
       {"--problem sod --set numerics.dt_min_fraction=0.5", "time step collapse"},
+      // Sedov's stable dt falls to 0.75 of its largest in the first steps
+      // (the blast leaves its cell): a 0.9 drop limit stops it, with the
+      // fraction named.
+      {"--problem sedov --scale 0.3 --set numerics.dt_drop_fraction=0.9",
+       "time step collapse at t = "},
       // Ten times the stable step tangles the mesh (or drives energies negative).
       {"--problem sedov --scale 0.3 --set numerics.cfl=1 --set numerics.dt_initial_factor=1 "
        "--set numerics.dt_growth=10 --set numerics.c_vol=0.99 --set numerics.order=1",

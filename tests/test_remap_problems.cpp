@@ -213,7 +213,9 @@ TEST(RemapProblems, EqualStrainClosureConservesInEverySolidProblem) {
       "ball", {closure, "geometry.thickness=1e-4", "t_end=5e-7"}, 0.25, "remap"));
   ASSERT_TRUE(ball.failed);
   EXPECT_NE(ball.failure.find("cell"), std::string::npos) << ball.failure;
-  EXPECT_NE(ball.failure.find("negative energy"), std::string::npos) << ball.failure;
+  // its near-vacuum gas, heated by its volume share of the dissipation, drives
+  // the stable dt a hundredfold down (numerics.dt_drop_fraction)
+  EXPECT_NE(ball.failure.find("time step collapse"), std::string::npos) << ball.failure;
   std::printf("ball, equal strain: %s\n", ball.failure.c_str());
 }
 
