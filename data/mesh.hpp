@@ -35,6 +35,11 @@ struct Mesh {
   // node -> corner CRS; corner id = 8 * cell + local node. Sorted by corner id,
   // so every node sum is taken in the same order whatever the thread count.
   IndexView node_corner_offsets, node_corners;
+  // The nodes in the order of their first corner (orderNodesByFirstCorner):
+  // the nodal solve visits them so, which reads the corner records nearly in
+  // storage order (a one-cell slab's two node layers alternate: each cell's
+  // eight corners are read in one pass, not half of them a layer later).
+  IndexView node_solve_order;
 
   // Boundary data of the nodal solver.
   DeviceView<int*> node_constrained;  // 1 if the node has a velocity constraint

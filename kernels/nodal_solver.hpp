@@ -115,79 +115,96 @@ KOKKOS_FORCEINLINE_FUNCTION void gatherStencil(const State& s, const Neighbors& 
 // corner neighbours for V only) and by the acoustic bound |dV| <= aL: a
 // larger excursion is a discontinuity the linear profile cannot hold, which
 // a near-vacuum gas cannot afford in its dissipation (docs/method.md §2.5).
-// Squared norms compared: one square root per cell.
+// Squared norms compared: one square root per cell. The vertices' values
+// are computed in lanes (VertexVectors), the same numbers as vertex by vertex.
 KOKKOS_FORCEINLINE_FUNCTION void limitedNodeVelocities(const CornerStencil& st, const SymMat3& inv,
-                                                       const Vec3 offsets[8], const Vec3& v_cell,
-                                                       double sound_speed, bool solid,
-                                                       Vec3 v_node[8]) {
+                                                       const VertexVectors& offsets,
+                                                       const Vec3& v_cell, double sound_speed,
+                                                       bool solid, VertexVectors& v_node) {
   const Vec3 grad_v[3] = {inv * st.rhs_v[0], inv * st.rhs_v[1], inv * st.rhs_v[2]};
-  Vec3 dv_node[8];
-  double length2[8];
-  for (int p = 0; p < 8; ++p) {
-    dv_node[p] =
-        Vec3{dot(grad_v[0], offsets[p]), dot(grad_v[1], offsets[p]), dot(grad_v[2], offsets[p])};
-    length2[p] = dot(dv_node[p], dv_node[p]);
-  }
+  VertexVectors dv_node;
+  dotEach(grad_v[0], offsets, dv_node.x);
+  dotEach(grad_v[1], offsets, dv_node.y);
+  dotEach(grad_v[2], offsets, dv_node.z);
+  double length2[kHexVertices];
+  dotEach(dv_node, dv_node, length2);
   const double phi_v = solid ? projectedLimiter<true, true>(st.dv_nb, dv_node, length2)
                              : projectedLimiter<false, true>(st.dv_nb, dv_node, length2);
   double longest2 = 0.0;
-  for (int p = 0; p < 8; ++p) longest2 = length2[p] > longest2 ? length2[p] : longest2;
+  for (int p = 0; p < kHexVertices; ++p) longest2 = length2[p] > longest2 ? length2[p] : longest2;
   const double phi = phi_v * phi_v * longest2 > sound_speed * sound_speed
                          ? sound_speed / math::sqrt(longest2)
                          : phi_v;
-  for (int p = 0; p < 8; ++p) v_node[p] = v_cell + phi * dv_node[p];
+  for (int p = 0; p < kHexVertices; ++p) {
+    v_node.x[p] = v_cell.x + phi * dv_node.x[p];
+    v_node.y[p] = v_cell.y + phi * dv_node.y[p];
+    v_node.z[p] = v_cell.z + phi * dv_node.z[p];
+  }
 }
+
+// The six components xx, yy, zz, xy, yz, xz of a symmetric tensor at the 8
+// vertices, in lanes.
+struct VertexTensors {
+  double c[6][kHexVertices];
+  KOKKOS_INLINE_FUNCTION SymMat3 operator[](int p) const {
+    return {c[0][p], c[1][p], c[2][p], c[3][p], c[4][p], c[5][p]};
+  }
+};
 
 // A solid's node stresses: the whole Cauchy stress limited as a tensor by one
 // factor (pulled-back jumps, projectedLimiter with the plateau guard) and the
 // acoustic bound |d sigma| <= rho aL^2; the unlimited excursions G d_p give
 // both the node values and the limiter's lengths.
 KOKKOS_FORCEINLINE_FUNCTION void limitedNodeStresses(const CornerStencil& st, const SymMat3& inv,
-                                                     const Vec3 offsets[8],
+                                                     const VertexVectors& offsets,
                                                      const SymMat3& sigma_cell, double stress_scale,
-                                                     SymMat3 sigma_node[8]) {
+                                                     VertexTensors& sigma_node) {
   Vec3 grad_sigma[6];
   for (int i = 0; i < 6; ++i) grad_sigma[i] = inv * st.rhs_sigma[i];
-  SymMat3 excursion[8];
-  double length2[8], largest2 = 0.0;
-  for (int p = 0; p < 8; ++p) {
-    const Vec3& d = offsets[p];
-    excursion[p] = SymMat3{dot(grad_sigma[0], d), dot(grad_sigma[1], d), dot(grad_sigma[2], d),
-                           dot(grad_sigma[3], d), dot(grad_sigma[4], d), dot(grad_sigma[5], d)};
-    length2[p] = ddot(excursion[p], excursion[p]);
-    largest2 = length2[p] > largest2 ? length2[p] : largest2;
+  VertexTensors excursion;
+  for (int i = 0; i < 6; ++i) dotEach(grad_sigma[i], offsets, excursion.c[i]);
+  double length2[kHexVertices], largest2 = 0.0;
+  for (int p = 0; p < kHexVertices; ++p) {  // ddot(excursion_p, excursion_p)
+    const double(&e)[6][kHexVertices] = excursion.c;
+    length2[p] = e[0][p] * e[0][p] + e[1][p] * e[1][p] + e[2][p] * e[2][p] +
+                 2.0 * (e[3][p] * e[3][p] + e[4][p] * e[4][p] + e[5][p] * e[5][p]);
   }
+  for (int p = 0; p < kHexVertices; ++p) largest2 = length2[p] > largest2 ? length2[p] : largest2;
   Vec3 pulled[6];
   pullBack(grad_sigma, st.dsigma_nb, pulled);
   double phi_sigma = projectedLimiter<true, false>(pulled, offsets, length2);
   if (phi_sigma * phi_sigma * largest2 > stress_scale * stress_scale) {
     phi_sigma = stress_scale / math::sqrt(largest2);
   }
-  for (int p = 0; p < 8; ++p) sigma_node[p] = sigma_cell + phi_sigma * excursion[p];
+  const double cell[6] = {sigma_cell.xx, sigma_cell.yy, sigma_cell.zz,
+                          sigma_cell.xy, sigma_cell.yz, sigma_cell.xz};
+  for (int i = 0; i < 6; ++i) {
+    for (int p = 0; p < kHexVertices; ++p) {
+      sigma_node.c[i][p] = cell[i] + phi_sigma * excursion.c[i][p];
+    }
+  }
 }
 
 // A fluid's node pressures: Barth-Jespersen in its two-division form (the
 // same phi as projectedLimiter<false, false>) and the acoustic bound
 // |dp| <= rho aL^2.
 KOKKOS_FORCEINLINE_FUNCTION void limitedNodePressures(const CornerStencil& st, const SymMat3& inv,
-                                                      const Vec3 offsets[8], double p_cell,
-                                                      double stress_scale, double p_node[8]) {
+                                                      const VertexVectors& offsets, double p_cell,
+                                                      double stress_scale,
+                                                      double p_node[kHexVertices]) {
   const Vec3 grad_p = inv * st.rhs_p;
-  double dp_node[8];
+  double dp_node[kHexVertices];
+  dotEach(grad_p, offsets, dp_node);
   VertexExcursion excursion;
-  LAGREMAP_UNROLL
-  for (int p = 0; p < 8; ++p) {
-    dp_node[p] = dot(grad_p, offsets[p]);
-    excursion.include(dp_node[p]);
-  }
-  double phi_p = cellLimiter(excursion, p_cell, st.pb, 1.0);
   double largest = 0.0;
-  for (int p = 0; p < 8; ++p) {
+  for (int p = 0; p < kHexVertices; ++p) {
+    excursion.include(dp_node[p]);
     const double size = math::fabs(dp_node[p]);
     largest = size > largest ? size : largest;
   }
+  double phi_p = cellLimiter(excursion, p_cell, st.pb, 1.0);
   if (phi_p * largest > stress_scale) phi_p = stress_scale / largest;
-  for (int p = 0; p < 8; ++p) p_node[p] = p_cell + phi_p * dp_node[p];
+  for (int p = 0; p < kHexVertices; ++p) p_node[p] = p_cell + phi_p * dp_node[p];
 }
 
 }  // namespace detail
@@ -219,14 +236,20 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
         const bool solid = s.aT_c(c) > 0.0;  // some material with strength in the cell
         const SymMat3 sigma_cell =
             solid ? loadSym(s.S_c, c) + identitySym(-p_cell) : identitySym(-p_cell);
-        Vec3 v_node[8];
-        double p_node[8];       // fluid: sigma = -p I
-        SymMat3 sigma_node[8];  // solid
+        VertexVectors v_node;
+        double p_node[kHexVertices];  // fluid: sigma = -p I
+        detail::VertexTensors sigma_node;  // solid
         if (!second_order) {
-          for (int p = 0; p < 8; ++p) {
-            v_node[p] = v_cell;
+          for (int p = 0; p < kHexVertices; ++p) {
+            v_node.x[p] = v_cell.x;
+            v_node.y[p] = v_cell.y;
+            v_node.z[p] = v_cell.z;
             p_node[p] = p_cell;
-            sigma_node[p] = sigma_cell;
+          }
+          const double cell[6] = {sigma_cell.xx, sigma_cell.yy, sigma_cell.zz,
+                                  sigma_cell.xy, sigma_cell.yz, sigma_cell.xz};
+          for (int i = 0; i < 6; ++i) {
+            for (int p = 0; p < kHexVertices; ++p) sigma_node.c[i][p] = cell[i];
           }
         } else {
           Vec3 x[8];
@@ -236,8 +259,12 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
                                 sigma_cell, solid, stencil);
           const SymMat3 inv = stencil.lsq.solver();
           const Vec3 centroid = loadVec3(s.x_c, c);
-          Vec3 offsets[8];
-          for (int p = 0; p < 8; ++p) offsets[p] = x[p] - centroid;
+          VertexVectors offsets;
+          for (int p = 0; p < kHexVertices; ++p) {
+            offsets.x[p] = x[p].x - centroid.x;
+            offsets.y[p] = x[p].y - centroid.y;
+            offsets.z[p] = x[p].z - centroid.z;
+          }
           const double sound_speed = s.aL_c(c);
           const double stress_scale = s.rho_c(c) * sound_speed * sound_speed;
           detail::limitedNodeVelocities(stencil, inv, offsets, v_cell, sound_speed, solid, v_node);
@@ -325,6 +352,7 @@ inline void nodalSolve(const Mesh& mesh, const State& state, const CornerControl
   const auto node_constrained = mesh.node_constrained;
   const auto node_corner_offsets = mesh.node_corner_offsets;
   const auto node_corners = mesh.node_corners;
+  const auto node_solve_order = mesh.node_solve_order;
   const auto node_projector = mesh.node_projector;
   const auto node_traction_faces = mesh.node_traction_faces;
   const auto node_traction_offsets = mesh.node_traction_offsets;
@@ -334,7 +362,8 @@ inline void nodalSolve(const Mesh& mesh, const State& state, const CornerControl
   const bool atomics = controls.gather == Gather::Atomics;
   Kokkos::parallel_for(
       atomics ? "lagremap::nodal_solve::atomics_sum" : "lagremap::nodal_solve::crs_gather",
-      Kokkos::RangePolicy<ExecSpace>(0, mesh.n_nodes), KOKKOS_LAMBDA(const Index n) {
+      Kokkos::RangePolicy<ExecSpace>(0, mesh.n_nodes), KOKKOS_LAMBDA(const Index visit) {
+        const Index n = node_solve_order(visit);
         SymMat3 impedance = identitySym(0.0);
         Vec3 rhs{0, 0, 0};
         if (atomics) {

@@ -103,14 +103,6 @@ KOKKOS_INLINE_FUNCTION double vertexLimiter(double delta, double center, const B
   return ratio < beta ? ratio : beta;
 }
 
-// Inner products of the fields projectedLimiter works on.
-KOKKOS_INLINE_FUNCTION double inner(double a, double b) {
-  return a * b;
-}
-KOKKOS_INLINE_FUNCTION double inner(const Vec3& a, const Vec3& b) {
-  return dot(a, b);
-}
-
 // Frame-independent limiter of a vector or tensor field psi (DESIGN §5 for a
 // field that is not a scalar; docs/method.md §2.3). At each vertex p the
 // unlimited excursion delta_p = G d_p (G the least-squares gradient,
@@ -135,48 +127,69 @@ KOKKOS_INLINE_FUNCTION double inner(const Vec3& a, const Vec3& b) {
 //     solid never leaves the plastic front. f -> 1 as r -> 1: smooth profiles
 //     are limited as by Barth-Jespersen (in 1D, not at all for r > 0.59; the
 //     1D limiter function is r + r^3 near r = 0).
-// Arguments: j : delta_p = inner(jumps[f], directions[p]) for the neighbour
+// Arguments: j : delta_p = dot(jumps[f], directions[p]) for the neighbour
 // across local face f (VTK order: 0 x-, 1 x+, 2 y-, 3 y+, 4 z-, 5 z+; a
 // missing neighbour is a zero jump, which changes nothing) and
 // length2[p] = |delta_p|^2. A vector passes its jumps and excursions
 // (directions = delta_p); a tensor passes the pulled-back jumps of pullBack()
 // with directions = d_p, whose cost does not grow with its six components.
-template <bool plateau_guard, bool vertex_sums, class Field>
-KOKKOS_INLINE_FUNCTION double projectedLimiter(const Field jumps[6], const Field directions[8],
+// Every vertex's measures are computed in lanes (VertexVectors); only the
+// final minimum over the vertices is a scalar loop, in vertex order.
+template <bool plateau_guard, bool vertex_sums>
+KOKKOS_INLINE_FUNCTION double projectedLimiter(const Vec3 jumps[6], const VertexVectors& directions,
                                                const double length2[8]) {
+  // (the faces holding vertex p in the VTK hexahedron: x+ for p = 1, 2, 5, 6,
+  // y+ for p & 2, z+ for p & 4)
+  constexpr bool kOnXPlus[kHexVertices] = {false, true, true, false, false, true, true, false};
+  double toward[kHexVertices], away[kHexVertices];
+  for (int p = 0; p < kHexVertices; ++p) toward[p] = away[p] = 0.0;
+  double along[6][kHexVertices];
+  for (int f = 0; f < 6; ++f) {
+    dotEach(jumps[f], directions, along[f]);
+    for (int p = 0; p < kHexVertices; ++p) {
+      toward[p] = along[f][p] > toward[p] ? along[f][p] : toward[p];
+      if (plateau_guard) away[p] = -along[f][p] > away[p] ? -along[f][p] : away[p];
+    }
+  }
+  if (vertex_sums) {
+    for (int p = 0; p < kHexVertices; ++p) {
+      const double fx = kOnXPlus[p] ? along[1][p] : along[0][p];
+      const double fy = (p & 2) ? along[3][p] : along[2][p];
+      const double fz = (p & 4) ? along[5][p] : along[4][p];
+      const double sums[4] = {fx + fy, fy + fz, fx + fz, fx + fy + fz};
+      for (const double sum : sums) {
+        toward[p] = sum > toward[p] ? sum : toward[p];
+        if (plateau_guard) away[p] = -sum > away[p] ? -sum : away[p];
+      }
+    }
+  }
+  // phi <= reach / length2, with the guard's f = (1 + r^2)/2 multiplied
+  // out (r = toward/away): one division, and only where a vertex lowers
+  // phi (never for length2 = 0)
+  double reach[kHexVertices], length2_scaled[kHexVertices];
+  for (int p = 0; p < kHexVertices; ++p) {
+    const bool guarded = plateau_guard && toward[p] < away[p];
+    reach[p] = guarded ? 0.5 * toward[p] * (away[p] * away[p] + toward[p] * toward[p]) : toward[p];
+    length2_scaled[p] = guarded ? length2[p] * (away[p] * away[p]) : length2[p];
+  }
   double limiter = 1.0;
-  LAGREMAP_UNROLL
-  for (int p = 0; p < 8; ++p) {
-    double along[10];
-    LAGREMAP_UNROLL
-    for (int f = 0; f < 6; ++f) along[f] = inner(jumps[f], directions[p]);
-    if (vertex_sums) {
-      // the faces holding vertex p in the VTK hexahedron
-      const double fx = along[((p ^ (p >> 1)) & 1) ? 1 : 0];
-      const double fy = along[(p & 2) ? 3 : 2];
-      const double fz = along[(p & 4) ? 5 : 4];
-      along[6] = fx + fy;
-      along[7] = fy + fz;
-      along[8] = fx + fz;
-      along[9] = fx + fy + fz;
-    }
-    double toward = 0.0, away = 0.0;
-    LAGREMAP_UNROLL
-    for (int j = 0; j < (vertex_sums ? 10 : 6); ++j) {
-      toward = along[j] > toward ? along[j] : toward;
-      if (plateau_guard) away = -along[j] > away ? -along[j] : away;
-    }
-    // phi <= reach / length2, with the guard's f = (1 + r^2)/2 multiplied
-    // out (r = toward/away): one division, and only where this vertex lowers
-    // phi (never for length2 = 0)
-    double reach = toward, length2_scaled = length2[p];
-    if (plateau_guard && toward < away) {
-      reach = 0.5 * toward * (away * away + toward * toward);
-      length2_scaled *= away * away;
-    }
-    if (reach < limiter * length2_scaled) limiter = reach / length2_scaled;
+  for (int p = 0; p < kHexVertices; ++p) {
+    if (reach[p] < limiter * length2_scaled[p]) limiter = reach[p] / length2_scaled[p];
   }
   return limiter;
+}
+
+// The same for directions given vertex by vertex.
+template <bool plateau_guard, bool vertex_sums>
+KOKKOS_INLINE_FUNCTION double projectedLimiter(const Vec3 jumps[6], const Vec3 directions[8],
+                                               const double length2[8]) {
+  VertexVectors lanes;
+  for (int p = 0; p < kHexVertices; ++p) {
+    lanes.x[p] = directions[p].x;
+    lanes.y[p] = directions[p].y;
+    lanes.z[p] = directions[p].z;
+  }
+  return projectedLimiter<plateau_guard, vertex_sums>(jumps, lanes, length2);
 }
 
 // Pulled-back jumps of a symmetric tensor field for projectedLimiter: with

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "mesh_setup.hpp"
 #include "parallel.hpp"
 #include "problem.hpp"
 
@@ -331,6 +332,7 @@ void uploadNodeCorners(const CellNodesView::HostMirror& nodes_host, Mesh& mesh) 
     for (int p = 0; p < 8; ++p) corners[std::size_t(fill[nodes_host(c, p)]++)] = 8 * c + p;
   mesh.node_corner_offsets = uploadIndices("lagremap::mesh::node_corner_offsets", corner_offsets);
   mesh.node_corners = uploadIndices("lagremap::mesh::node_corners", corners);
+  orderNodesByFirstCorner(mesh);
 }
 
 // The local cells' arrays: the global ones restricted and renumbered, and

@@ -1,5 +1,6 @@
 #include "mesh_setup.hpp"
 
+#include <algorithm>
 #include <random>
 #include <stdexcept>
 #include <vector>
@@ -254,12 +255,28 @@ void uploadMesh(const HostBlockMesh& host, Mesh& mesh) {
   upload(host.projector, mesh.node_projector);
   mesh.node_corner_offsets = uploadList("lagremap::mesh::node_corner_offsets", host.corner_offsets);
   mesh.node_corners = uploadList("lagremap::mesh::node_corners", host.corners);
+  orderNodesByFirstCorner(mesh);
   mesh.node_traction_offsets =
       uploadList("lagremap::mesh::node_traction_offsets", host.traction_offsets);
   mesh.node_traction_faces = uploadList("lagremap::mesh::node_traction_faces", host.traction_faces);
 }
 
 }  // namespace
+
+void orderNodesByFirstCorner(Mesh& mesh) {
+  const auto offsets = Kokkos::create_mirror_view_and_copy(HostSpace(), mesh.node_corner_offsets);
+  const auto corners = Kokkos::create_mirror_view_and_copy(HostSpace(), mesh.node_corners);
+  // a corner belongs to one node: the first corners are distinct
+  std::vector<std::pair<Index, Index>> first_corner(std::size_t(mesh.n_nodes));
+  for (Index n = 0; n < mesh.n_nodes; ++n) {
+    const Index first = offsets(n) < offsets(n + 1) ? corners(offsets(n)) : 8 * mesh.n_cells + n;
+    first_corner[std::size_t(n)] = {first, n};
+  }
+  std::sort(first_corner.begin(), first_corner.end());
+  std::vector<Index> order(first_corner.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = first_corner[i].second;
+  mesh.node_solve_order = uploadList("lagremap::mesh::node_solve_order", order);
+}
 
 Mesh buildBlockMesh(const BlockSpec& spec, const SideBoundaries& boundaries) {
   if (spec.nx < 1 || spec.ny < 1 || spec.nz < 1) {

@@ -23,6 +23,8 @@ struct BlockSpec {
 Mesh buildBlockMesh(const BlockSpec& spec, const SideBoundaries& boundaries);
 // Marks every cell and node of the mesh owned, with global id = local id.
 void ownEverything(Mesh& mesh);
+// Mesh::node_solve_order from the node -> corner CRS.
+void orderNodesByFirstCorner(Mesh& mesh);
 
 // Host copies of coordinates and connectivity, for output and checks.
 struct HostMesh {
