@@ -46,3 +46,14 @@ using Kokkos::Experimental::sqrt;
 #else
 #define LAGREMAP_UNROLL
 #endif
+
+// A loop over lanes (the 8 vertices of a hexahedron, structure of arrays)
+// whose iterations are independent: vectorised on CPUs (OpenMP simd, which
+// also lets the compiler turn a selection into a blend); device passes get
+// none (one thread does the whole loop).
+#if defined(__CUDA_ARCH__) || defined(__HIP_DEVICE_COMPILE__) || defined(__CUDACC__) || \
+    defined(__HIPCC__) || !defined(_OPENMP)
+#define LAGREMAP_LANES
+#else
+#define LAGREMAP_LANES _Pragma("omp simd")
+#endif

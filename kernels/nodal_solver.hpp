@@ -135,6 +135,7 @@ KOKKOS_FORCEINLINE_FUNCTION void limitedNodeVelocities(const CornerStencil& st, 
   const double phi = phi_v * phi_v * longest2 > sound_speed * sound_speed
                          ? sound_speed / math::sqrt(longest2)
                          : phi_v;
+  LAGREMAP_LANES
   for (int p = 0; p < kHexVertices; ++p) {
     v_node.x[p] = v_cell.x + phi * dv_node.x[p];
     v_node.y[p] = v_cell.y + phi * dv_node.y[p];
@@ -164,6 +165,7 @@ KOKKOS_FORCEINLINE_FUNCTION void limitedNodeStresses(const CornerStencil& st, co
   VertexTensors excursion;
   for (int i = 0; i < 6; ++i) dotEach(grad_sigma[i], offsets, excursion.c[i]);
   double length2[kHexVertices], largest2 = 0.0;
+  LAGREMAP_LANES
   for (int p = 0; p < kHexVertices; ++p) {  // ddot(excursion_p, excursion_p)
     const double(&e)[6][kHexVertices] = excursion.c;
     length2[p] = e[0][p] * e[0][p] + e[1][p] * e[1][p] + e[2][p] * e[2][p] +
@@ -179,6 +181,7 @@ KOKKOS_FORCEINLINE_FUNCTION void limitedNodeStresses(const CornerStencil& st, co
   const double cell[6] = {sigma_cell.xx, sigma_cell.yy, sigma_cell.zz,
                           sigma_cell.xy, sigma_cell.yz, sigma_cell.xz};
   for (int i = 0; i < 6; ++i) {
+    LAGREMAP_LANES
     for (int p = 0; p < kHexVertices; ++p) {
       sigma_node.c[i][p] = cell[i] + phi_sigma * excursion.c[i][p];
     }
@@ -204,6 +207,7 @@ KOKKOS_FORCEINLINE_FUNCTION void limitedNodePressures(const CornerStencil& st, c
   }
   double phi_p = cellLimiter(excursion, p_cell, st.pb, 1.0);
   if (phi_p * largest > stress_scale) phi_p = stress_scale / largest;
+  LAGREMAP_LANES
   for (int p = 0; p < kHexVertices; ++p) p_node[p] = p_cell + phi_p * dp_node[p];
 }
 
@@ -260,6 +264,7 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
           const SymMat3 inv = stencil.lsq.solver();
           const Vec3 centroid = loadVec3(s.x_c, c);
           VertexVectors offsets;
+          LAGREMAP_LANES
           for (int p = 0; p < kHexVertices; ++p) {
             offsets.x[p] = x[p].x - centroid.x;
             offsets.y[p] = x[p].y - centroid.y;

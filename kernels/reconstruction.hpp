@@ -146,12 +146,14 @@ KOKKOS_INLINE_FUNCTION double projectedLimiter(const Vec3 jumps[6], const Vertex
   double along[6][kHexVertices];
   for (int f = 0; f < 6; ++f) {
     dotEach(jumps[f], directions, along[f]);
+    LAGREMAP_LANES
     for (int p = 0; p < kHexVertices; ++p) {
       toward[p] = along[f][p] > toward[p] ? along[f][p] : toward[p];
       if (plateau_guard) away[p] = -along[f][p] > away[p] ? -along[f][p] : away[p];
     }
   }
   if (vertex_sums) {
+    LAGREMAP_LANES
     for (int p = 0; p < kHexVertices; ++p) {
       const double fx = kOnXPlus[p] ? along[1][p] : along[0][p];
       const double fy = (p & 2) ? along[3][p] : along[2][p];
@@ -167,6 +169,7 @@ KOKKOS_INLINE_FUNCTION double projectedLimiter(const Vec3 jumps[6], const Vertex
   // out (r = toward/away): one division, and only where a vertex lowers
   // phi (never for length2 = 0)
   double reach[kHexVertices], length2_scaled[kHexVertices];
+  LAGREMAP_LANES
   for (int p = 0; p < kHexVertices; ++p) {
     const bool guarded = plateau_guard && toward[p] < away[p];
     reach[p] = guarded ? 0.5 * toward[p] * (away[p] * away[p] + toward[p] * toward[p]) : toward[p];
