@@ -115,13 +115,23 @@ KOKKOS_INLINE_FUNCTION void relaxationVolumes(const State& s, Index c,
   for (int m = 0; m < n_materials; ++m) relax[m] *= scale;
 }
 
+// A mixed cell's relaxation volumes, computed once a stage: the cell update
+// (updateMaterials) fills them, and the geometry of the same sweep
+// (shareVolumeChange) takes them instead of computing them again; both read
+// the same step-start state.
+struct StageRelaxation {
+  bool known = false;
+  double volume[kMaxMaterials] = {};
+};
+
 KOKKOS_INLINE_FUNCTION double relaxationVolume(const State& s, Index c, int k) {
   double relax[kMaxMaterials];
   relaxationVolumes(s, c, relax);
   return relax[k];
 }
 
-KOKKOS_INLINE_FUNCTION void shareVolumeChange(const State& s, Index c, double volume) {
+KOKKOS_INLINE_FUNCTION void shareVolumeChange(const State& s, Index c, double volume,
+                                              const StageRelaxation* known = nullptr) {
   if (s.closure == MixtureClosure::EqualStrain) return;  // alpha^k unchanged
   double weight_sum = 0.0;
   int present = 0;
@@ -132,8 +142,9 @@ KOKKOS_INLINE_FUNCTION void shareVolumeChange(const State& s, Index c, double vo
   }
   if (present < 2 || !(weight_sum > 0.0)) return;
   const double volume_start = s.vol_c0(c);
-  double relax[kMaxMaterials];
-  relaxationVolumes(s, c, relax);
+  double computed[kMaxMaterials];
+  if (!(known && known->known)) relaxationVolumes(s, c, computed);
+  const double* relax = known && known->known ? known->volume : computed;
   double alpha_sum = 0.0;
   for (int k = 0; k < s.n_materials; ++k) {
     const double alpha_start = s.alpha_ck0(c, k);
@@ -247,7 +258,8 @@ enum class StageEnd {
 // cell's volume change is shared among its materials first.
 KOKKOS_INLINE_FUNCTION void cellThermoOnGeometry(const hex::CellGeometry& geo, const State& s,
                                                  const TimeStepControls& controls, Index c,
-                                                 StepLimit& best, bool end_of_stage) {
+                                                 StepLimit& best, bool end_of_stage,
+                                                 const StageRelaxation* relaxation = nullptr) {
   const double volume = geo.shape.volume;
   s.vol_c(c) = volume;
   storeVec3(s.x_c, c, geo.shape.centroid);
@@ -257,7 +269,7 @@ KOKKOS_INLINE_FUNCTION void cellThermoOnGeometry(const hex::CellGeometry& geo, c
   const Vec3 v = loadVec3(s.v_c, c);
   const double rho = s.m_c(c) / volume;
   const double e = s.E_c(c) - 0.5 * dot(v, v);
-  if (end_of_stage && s.n_materials > 1) shareVolumeChange(s, c, volume);
+  if (end_of_stage && s.n_materials > 1) shareVolumeChange(s, c, volume, relaxation);
   const CellThermo thermo = cellThermo(s, c, volume, e);
   const double aL = thermo.aL2 > 0.0 ? math::sqrt(thermo.aL2) : 0.0;
   const double aT = math::sqrt(thermo.aT2);
@@ -287,11 +299,12 @@ KOKKOS_INLINE_FUNCTION void cellThermoOnGeometry(const hex::CellGeometry& geo, c
 // centroid and volume shares, and the checks that need no equation of state
 // (a tangled cell, a non-finite energy or density). Proposes no time step.
 KOKKOS_INLINE_FUNCTION void cellShapeForRemap(const hex::CellShape& shape, const State& s, Index c,
-                                              StepLimit& best) {
+                                              StepLimit& best,
+                                              const StageRelaxation* relaxation = nullptr) {
   const double volume = shape.volume;
   s.vol_c(c) = volume;
   storeVec3(s.x_c, c, shape.centroid);
-  if (s.n_materials > 1) shareVolumeChange(s, c, volume);
+  if (s.n_materials > 1) shareVolumeChange(s, c, volume, relaxation);
   if (!(volume > 0.0)) return proposeStepLimit(best, -1.0, c, kBadVolume);
   const Vec3 v = loadVec3(s.v_c, c);
   const double e = s.E_c(c) - 0.5 * dot(v, v);
@@ -304,16 +317,17 @@ KOKKOS_INLINE_FUNCTION void cellGeometryAndThermo(const CellNodesView& cell_node
                                                   const Vec3View& x_n, const State& s,
                                                   const TimeStepControls& controls, Index c,
                                                   StepLimit& best, bool end_of_stage = false,
-                                                  StageEnd what = StageEnd::Full) {
+                                                  StageEnd what = StageEnd::Full,
+                                                  const StageRelaxation* relaxation = nullptr) {
   Vec3 x[8];
   gatherCellNodes(cell_nodes, x_n, c, x);
   hex::CellGeometry geo;
   if (what == StageEnd::Full) {
     hex::cellGeometry<true>(x, geo);
-    cellThermoOnGeometry(geo, s, controls, c, best, end_of_stage);
+    cellThermoOnGeometry(geo, s, controls, c, best, end_of_stage, relaxation);
   } else {
     hex::cellGeometry<false>(x, geo);
-    cellShapeForRemap(geo.shape, s, c, best);
+    cellShapeForRemap(geo.shape, s, c, best, relaxation);
   }
 }
 

@@ -502,14 +502,19 @@ struct MixedCellBudget {
 // kMinVolumeKept of the start volume (the pdV work stops where the volume
 // does; what the cap leaves out goes to D, shared by mass).
 KOKKOS_FORCEINLINE_FUNCTION void ownVolumeRatios(const State& s, Index c, double volume_change,
-                                                 double own_ratio[]) {
+                                                 double own_ratio[], StageRelaxation& relaxation) {
   const bool equal_strain = s.closure == MixtureClosure::EqualStrain;
   double weight_sum = 0.0;  // compressibility weights of the step start
   for (int k = 0; k < s.n_materials && !equal_strain; ++k) {
     if (s.alpha_ck(c, k) > 0.0) weight_sum += s.w_ck0(c, k);
   }
-  double relax[kMaxMaterials] = {};
-  if (!equal_strain) relaxationVolumes(s, c, relax);
+  double* relax = relaxation.volume;
+  if (equal_strain) {
+    for (int k = 0; k < kMaxMaterials; ++k) relax[k] = 0.0;
+  } else {
+    relaxationVolumes(s, c, relax);
+    relaxation.known = true;
+  }
   for (int k = 0; k < s.n_materials; ++k) {
     if (!(s.alpha_ck(c, k) > 0.0)) continue;
     // (equal strain: alpha^k of the volume change, the cell's rate)
@@ -568,8 +573,9 @@ KOKKOS_FORCEINLINE_FUNCTION double dissipationShare(const State& s, Index c, int
 // The budget of a mixed cell whose specific internal energy is now e_new.
 KOKKOS_FORCEINLINE_FUNCTION void mixedCellBudget(const State& s, Index c, double e_new,
                                                  const Mat3& gradient, double dt_stage,
-                                                 MixedCellBudget& budget) {
-  ownVolumeRatios(s, c, dt_stage * s.vol_c(c) * trace(gradient), budget.own_ratio);
+                                                 MixedCellBudget& budget,
+                                                 StageRelaxation& relaxation) {
+  ownVolumeRatios(s, c, dt_stage * s.vol_c(c) * trace(gradient), budget.own_ratio, relaxation);
   const Vec3 v0 = loadVec3(s.v_c0, c);
   budget.dissipation = s.m_c(c) * (e_new - (s.E_c0(c) - 0.5 * dot(v0, v0)));
   for (int k = 0; k < s.n_materials; ++k) {
@@ -604,9 +610,11 @@ KOKKOS_FORCEINLINE_FUNCTION void mixedCellBudget(const State& s, Index c, double
 //   interface normal to its own volume ratio.
 // A trace's deviator is not driven by the cell's strain rate (it has no say in
 // the stress): it keeps its value until it is a material again.
+// `relaxation`: a mixed cell's relaxation volumes, for the geometry of the same
+// sweep (StageRelaxation).
 KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, const Vec3View& x_n,
                                             const State& s, double dt_stage, Index c,
-                                            double e_new) {
+                                            double e_new, StageRelaxation& relaxation) {
   int present = 0, last = 0;
   for (int k = 0; k < s.n_materials; ++k) {
     if (s.alpha_ck(c, k) > 0.0) {
@@ -621,7 +629,7 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
   const Mat3 gradient = velocityGradient(cell_nodes, s, c);
   const double threshold = mixed ? s.alpha_trace : 0.0;
   detail::MixedCellBudget budget;
-  if (mixed) detail::mixedCellBudget(s, c, e_new, gradient, dt_stage, budget);
+  if (mixed) detail::mixedCellBudget(s, c, e_new, gradient, dt_stage, budget, relaxation);
   bool deformation_known = false;
   Mat3 deformation = zeroMat();
   for (int k = 0; k < s.n_materials; ++k) {
@@ -673,7 +681,8 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
 //   m_c dV_c/dt = sum_p F_cp,  m_c dE_c/dt = sum_p F_cp . V_p,
 // and dv_c/dt = sum_p A_cp . V_p for the next time step.
 KOKKOS_INLINE_FUNCTION void updateCell(const CellNodesView& cell_nodes, const Vec3View& x_n,
-                                       const State& s, double dt_stage, Index c) {
+                                       const State& s, double dt_stage, Index c,
+                                       StageRelaxation& relaxation) {
   Vec3 force{0, 0, 0};
   double power = 0.0, dvdt = 0.0;
   for (int p = 0; p < 8; ++p) {
@@ -690,7 +699,8 @@ KOKKOS_INLINE_FUNCTION void updateCell(const CellNodesView& cell_nodes, const Ve
   storeVec3(s.v_c, c, velocity);
   s.E_c(c) = total_energy;
   s.dvdt_c(c) = dvdt;
-  updateMaterials(cell_nodes, x_n, s, dt_stage, c, total_energy - 0.5 * dot(velocity, velocity));
+  updateMaterials(cell_nodes, x_n, s, dt_stage, c, total_energy - 0.5 * dot(velocity, velocity),
+                  relaxation);
 }
 
 inline void updateCells(const Mesh& mesh, const State& state, double dt_stage) {
@@ -699,7 +709,10 @@ inline void updateCells(const Mesh& mesh, const State& state, double dt_stage) {
   const auto s = state;
   Kokkos::parallel_for(
       "lagremap::cell_update::corner_forces", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
-      KOKKOS_LAMBDA(const Index c) { updateCell(cell_nodes, x_n, s, dt_stage, c); });
+      KOKKOS_LAMBDA(const Index c) {
+        StageRelaxation relaxation;
+        updateCell(cell_nodes, x_n, s, dt_stage, c, relaxation);
+      });
 }
 
 // The end of a stage in one sweep: each cell's update, then its geometry and
@@ -716,8 +729,9 @@ inline StepLimit updateCellsAndGeometry(const Mesh& mesh, const State& state, do
   return stepLimitOverCells(
       "lagremap::cell_update::update_and_geometry", mesh,
       KOKKOS_LAMBDA(const Index c, StepLimit& best) {
-        updateCell(cell_nodes, x_n, s, dt_stage, c);
-        cellGeometryAndThermo(cell_nodes, x_n, s, controls, c, best, true, what);
+        StageRelaxation relaxation;
+        updateCell(cell_nodes, x_n, s, dt_stage, c, relaxation);
+        cellGeometryAndThermo(cell_nodes, x_n, s, controls, c, best, true, what, &relaxation);
       });
 }
 

@@ -31,7 +31,12 @@ std::string describeInvalidCell(const StepLimit& limit, long step, const char* w
 
 LagrangeStep::LagrangeStep(Mesh& mesh, State& state, const Numerics& numerics, PhaseTimers& timers,
                            const Halo* halo)
-    : mesh_(mesh), state_(state), numerics_(numerics), timers_(timers), halo_(halo) {}
+    : mesh_(mesh), state_(state), numerics_(numerics), timers_(timers), halo_(halo) {
+  const auto materials = Kokkos::create_mirror_view_and_copy(HostSpace(), state.materials);
+  for (std::size_t k = 0; k < materials.extent(0); ++k) {
+    evolves_b_ = evolves_b_ || materials(k).strength == StrengthKind::NeoHookean;
+  }
+}
 
 StepLimit LagrangeStep::overAllRanks(StepLimit limit) const {
   const int cell = limit.loc / kLimitCodes;
@@ -101,7 +106,7 @@ void LagrangeStep::saveStartOfStep() {
   }
   if (state_.has_solids) {  // fluids-only runs have no deviator or B to carry
     Kokkos::deep_copy(state_.S_ck0, state_.S_ck);
-    Kokkos::deep_copy(state_.B_ck0, state_.B_ck);
+    if (evolves_b_) Kokkos::deep_copy(state_.B_ck0, state_.B_ck);
   }
 }
 
@@ -113,7 +118,7 @@ void LagrangeStep::restoreStartOfStep() {
   if (state_.n_materials > 1) Kokkos::deep_copy(state_.alpha_ck, state_.alpha_ck0);
   if (state_.has_solids) {
     Kokkos::deep_copy(state_.S_ck, state_.S_ck0);
-    Kokkos::deep_copy(state_.B_ck, state_.B_ck0);
+    if (evolves_b_) Kokkos::deep_copy(state_.B_ck, state_.B_ck0);
   }
   computeGeometry();
 }

@@ -81,6 +81,9 @@ class LagrangeStep {
   PhaseTimers& timers_;
   const Halo* halo_;
   bool remap_follows_ = false;
+  // Some material is Neo-Hookean: B is evolved, so the step start keeps it
+  // (a hypo-elastic or fluid material's B stays the identity).
+  bool evolves_b_ = false;
 };
 
 }  // namespace lagremap

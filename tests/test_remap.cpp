@@ -437,7 +437,8 @@ void updateMaterialsOfFirstCell(const Mesh& mesh, const State& state, double dt,
   const State device_state = state;
   Kokkos::parallel_for(
       "test::update_materials", Kokkos::RangePolicy<ExecSpace>(0, 1), KOKKOS_LAMBDA(const Index c) {
-        updateMaterials(cell_nodes, x_n, device_state, dt, c, e_cell);
+        StageRelaxation relaxation;
+        updateMaterials(cell_nodes, x_n, device_state, dt, c, e_cell, relaxation);
       });
   Kokkos::fence();
 }
