@@ -40,6 +40,16 @@ struct Mesh {
   // storage order (a one-cell slab's two node layers alternate: each cell's
   // eight corners are read in one pass, not half of them a layer later).
   IndexView node_solve_order;
+  // Twin nodes of a one-cell-thick slab or bar between symmetry planes
+  // (findNodeTwins): the two nodes across the thin direction see mirror-image
+  // corner terms and both have a zero velocity normal to the planes, so they
+  // move alike; the nodal solve solves the first and gives its velocity to
+  // the other (and mirrors its external force). node_twin_source(n): the
+  // node whose solution n takes (n itself if n is solved); node_twin_flip(n):
+  // the axes (bit 0 x, 1 y, 2 z) its external force is mirrored across.
+  // Empty when the mesh has no twins.
+  IndexView node_twin_source;
+  DeviceView<int*> node_twin_flip;
 
   // Boundary data of the nodal solver.
   DeviceView<int*> node_constrained;  // 1 if the node has a velocity constraint

@@ -241,7 +241,7 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
         const SymMat3 sigma_cell =
             solid ? loadSym(s.S_c, c) + identitySym(-p_cell) : identitySym(-p_cell);
         VertexVectors v_node;
-        double p_node[kHexVertices];  // fluid: sigma = -p I
+        double p_node[kHexVertices];       // fluid: sigma = -p I
         detail::VertexTensors sigma_node;  // solid
         if (!second_order) {
           for (int p = 0; p < kHexVertices; ++p) {
@@ -363,12 +363,16 @@ inline void nodalSolve(const Mesh& mesh, const State& state, const CornerControl
   const auto node_traction_offsets = mesh.node_traction_offsets;
   const auto side_traction = mesh.side_traction;
   const auto x_n = mesh.x_n;
+  const auto twin_source = mesh.node_twin_source;
+  const auto twin_flip = mesh.node_twin_flip;
+  const bool twins = twin_source.extent(0) > 0;
   const auto s = state;
   const bool atomics = controls.gather == Gather::Atomics;
   Kokkos::parallel_for(
       atomics ? "lagremap::nodal_solve::atomics_sum" : "lagremap::nodal_solve::crs_gather",
       Kokkos::RangePolicy<ExecSpace>(0, mesh.n_nodes), KOKKOS_LAMBDA(const Index visit) {
         const Index n = node_solve_order(visit);
+        if (twins && twin_source(n) != n) return;  // its twin's solution (below)
         SymMat3 impedance = identitySym(0.0);
         Vec3 rhs{0, 0, 0};
         if (atomics) {
@@ -424,6 +428,24 @@ inline void nodalSolve(const Mesh& mesh, const State& state, const CornerControl
         // External force on the node (sum_c F_cp up to round-off): wall reaction
         // plus traction load, for the conservation audit.
         storeVec3(s.f_ext_n, n, reaction + load);
+        storeVec3(s.x_n_next, n, loadVec3(s.x_n0, n) + dt_stage * velocity);
+      });
+  if (!twins) return;
+  // A slab's or bar's twin nodes (Mesh::node_twin_source): the velocity of
+  // the node they mirror (its components normal to the planes are zero) and
+  // its external force mirrored.
+  Kokkos::parallel_for(
+      "lagremap::nodal_solve::twins", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_nodes),
+      KOKKOS_LAMBDA(const Index n) {
+        const Index source = twin_source(n);
+        if (source == n) return;
+        const Vec3 velocity = loadVec3(s.v_n, source);
+        const Vec3 force = loadVec3(s.f_ext_n, source);
+        const int flip = twin_flip(n);
+        storeVec3(s.v_n, n, velocity);
+        storeVec3(s.f_ext_n, n,
+                  Vec3{flip & 1 ? -force.x : force.x, flip & 2 ? -force.y : force.y,
+                       flip & 4 ? -force.z : force.z});
         storeVec3(s.x_n_next, n, loadVec3(s.x_n0, n) + dt_stage * velocity);
       });
 }
@@ -613,8 +635,8 @@ KOKKOS_FORCEINLINE_FUNCTION void mixedCellBudget(const State& s, Index c, double
 // `relaxation`: a mixed cell's relaxation volumes, for the geometry of the same
 // sweep (StageRelaxation).
 KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, const Vec3View& x_n,
-                                            const State& s, double dt_stage, Index c,
-                                            double e_new, StageRelaxation& relaxation) {
+                                            const State& s, double dt_stage, Index c, double e_new,
+                                            StageRelaxation& relaxation) {
   int present = 0, last = 0;
   for (int k = 0; k < s.n_materials; ++k) {
     if (s.alpha_ck(c, k) > 0.0) {

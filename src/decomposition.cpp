@@ -403,6 +403,7 @@ Subdomain decompose(const Mesh& global) {
   mesh.n_owned_nodes = Index(std::count(local.node_owner.begin(), local.node_owner.end(), me));
   mesh.n_global_cells = global.n_cells;
   mesh.n_global_nodes = global.n_nodes;
+  findNodeTwins(mesh);
 
   sub.halo.cell_links = makeLinks(local.cells, local.cell_owner, local.cell_local, "cell");
   sub.halo.node_links = makeLinks(local.nodes, local.node_owner, local.node_local, "node");

@@ -278,6 +278,79 @@ void orderNodesByFirstCorner(Mesh& mesh) {
   mesh.node_solve_order = uploadList("lagremap::mesh::node_solve_order", order);
 }
 
+namespace {
+
+// The partner across axis a of local node p of a VTK hexahedron, and
+// whether p is on the axis's minus side.
+int partnerAcross(int axis, int p) {
+  return axis == 0 ? p ^ 1 : axis == 1 ? p ^ 3 : p ^ 4;
+}
+bool onMinusSide(int axis, int p) {
+  if (axis == 0) return ((p ^ (p >> 1)) & 1) == 0;  // x-: 0, 3, 4, 7
+  if (axis == 1) return (p & 2) == 0;               // y-: 0, 1, 4, 5
+  return (p & 4) == 0;                              // z-: 0, 1, 2, 3
+}
+
+}  // namespace
+
+void findNodeTwins(Mesh& mesh) {
+  const auto nodes = Kokkos::create_mirror_view_and_copy(HostSpace(), mesh.cell_nodes);
+  const auto neighbors = Kokkos::create_mirror_view_and_copy(HostSpace(), mesh.cell_neighbors);
+  const auto face_side = Kokkos::create_mirror_view_and_copy(HostSpace(), mesh.cell_face_side);
+  const auto side_kind = Kokkos::create_mirror_view_and_copy(HostSpace(), mesh.side_kind);
+  const auto x = Kokkos::create_mirror_view_and_copy(HostSpace(), mesh.x_n);
+  std::vector<Index> source(std::size_t(mesh.n_nodes));
+  std::vector<int> flip(std::size_t(mesh.n_nodes), 0);
+  for (Index n = 0; n < mesh.n_nodes; ++n) source[std::size_t(n)] = n;
+  bool any = false;
+  for (int axis = 0; axis < 3; ++axis) {
+    const auto between_walls = [&](Index c, int f) {
+      return neighbors(c, f) < 0 && face_side(c, f) >= 0 &&
+             side_kind(face_side(c, f)) == int(BoundaryKind::Wall);
+    };
+    bool thin = mesh.n_cells > 0;
+    for (Index c = 0; c < mesh.n_cells && thin; ++c) {
+      thin = between_walls(c, 2 * axis) && between_walls(c, 2 * axis + 1);
+      for (int p = 0; p < 8 && thin; ++p) {
+        const Index a = nodes(c, p), b = nodes(c, partnerAcross(axis, p));
+        for (int d = 0; d < 3; ++d) thin = thin && (d == axis || x(a, d) == x(b, d));
+      }
+    }
+    if (!thin) continue;
+    any = true;
+    // the plus side's node takes its minus partner's source (composed over
+    // the axes: a bar's four nodes of a station take the (-, -) one's)
+    for (Index c = 0; c < mesh.n_cells; ++c) {
+      for (int p = 0; p < 8; ++p) {
+        if (!onMinusSide(axis, p)) continue;
+        const Index minus = nodes(c, p), plus = nodes(c, partnerAcross(axis, p));
+        source[std::size_t(plus)] = minus;
+        flip[std::size_t(plus)] = 1 << axis;
+      }
+    }
+    for (Index n = 0; n < mesh.n_nodes; ++n) {  // follow the chain to its end
+      Index s = source[std::size_t(n)];
+      int mirrored = flip[std::size_t(n)];
+      while (source[std::size_t(s)] != s) {
+        mirrored ^= flip[std::size_t(s)];
+        s = source[std::size_t(s)];
+      }
+      source[std::size_t(n)] = s;
+      flip[std::size_t(n)] = mirrored;
+    }
+  }
+  if (!any) {
+    mesh.node_twin_source = IndexView();
+    mesh.node_twin_flip = DeviceView<int*>();
+    return;
+  }
+  mesh.node_twin_source = uploadList("lagremap::mesh::node_twin_source", source);
+  Kokkos::View<int*, HostSpace> flip_host("lagremap::mesh::node_twin_flip", flip.size());
+  for (std::size_t n = 0; n < flip.size(); ++n) flip_host(n) = flip[n];
+  mesh.node_twin_flip = DeviceView<int*>("lagremap::mesh::node_twin_flip", flip.size());
+  Kokkos::deep_copy(mesh.node_twin_flip, flip_host);
+}
+
 Mesh buildBlockMesh(const BlockSpec& spec, const SideBoundaries& boundaries) {
   if (spec.nx < 1 || spec.ny < 1 || spec.nz < 1) {
     throw std::invalid_argument("mesh needs at least one cell in each direction");
@@ -301,6 +374,7 @@ Mesh buildBlockMesh(const BlockSpec& spec, const SideBoundaries& boundaries) {
   uploadMesh(host, mesh);
   uploadSides(boundaries, mesh);
   ownEverything(mesh);
+  findNodeTwins(mesh);
   return mesh;
 }
 

@@ -25,6 +25,12 @@ Mesh buildBlockMesh(const BlockSpec& spec, const SideBoundaries& boundaries);
 void ownEverything(Mesh& mesh);
 // Mesh::node_solve_order from the node -> corner CRS.
 void orderNodesByFirstCorner(Mesh& mesh);
+// Mesh::node_twin_source and node_twin_flip: along each axis on which every
+// cell is one cell thick between two wall/symmetry sides (and its nodes
+// across it share their other two coordinates), the nodes of the plus side
+// take the solution of their partner on the minus side. Needs the mesh's
+// connectivity, boundary sides and node positions.
+void findNodeTwins(Mesh& mesh);
 
 // Host copies of coordinates and connectivity, for output and checks.
 struct HostMesh {

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <hdf5.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -74,6 +75,91 @@ TEST(Lagrange, FreeStreamIsPreservedOnADistortedMesh) {
       const Vec3 moved = loadVec3(x, n) - loadVec3(x_start, n);
       EXPECT_LT(norm(moved - t * velocity), 1e-13) << "order " << order;
     }
+  }
+}
+
+// A one-cell slab between symmetry planes (and a bar, thin in two
+// directions): findNodeTwins pairs each node with its partner across the
+// thin direction, and the nodal solve that copies the partner's solution
+// gives what every node's own solve gives, to round-off.
+TEST(Lagrange, SlabTwinNodesMoveAsTheirOwnSolveWouldMoveThem) {
+  SideBoundaries walls;  // every side a wall (symmetry)
+  const auto twinsOf = [&](int nx, int ny, int nz, const SideBoundaries& sides) {
+    BlockSpec block;
+    block.nx = nx;
+    block.ny = ny;
+    block.nz = nz;
+    return buildBlockMesh(block, sides);
+  };
+  {  // slab: node p + 4 of every cell takes node p's solution, its force mirrored in z
+    const Mesh slab = twinsOf(3, 2, 1, walls);
+    ASSERT_EQ(slab.node_twin_source.extent(0), std::size_t(slab.n_nodes));
+    const auto source = Kokkos::create_mirror_view_and_copy(HostSpace(), slab.node_twin_source);
+    const auto flip = Kokkos::create_mirror_view_and_copy(HostSpace(), slab.node_twin_flip);
+    const auto nodes = Kokkos::create_mirror_view_and_copy(HostSpace(), slab.cell_nodes);
+    for (Index c = 0; c < slab.n_cells; ++c) {
+      for (int p = 0; p < 4; ++p) {
+        EXPECT_EQ(source(nodes(c, p)), nodes(c, p));
+        EXPECT_EQ(source(nodes(c, p + 4)), nodes(c, p));
+        EXPECT_EQ(flip(nodes(c, p + 4)), 4);
+      }
+    }
+  }
+  {  // bar along x: the four nodes of a station take the (y-, z-) one's
+    const Mesh bar = twinsOf(4, 1, 1, walls);
+    const auto source = Kokkos::create_mirror_view_and_copy(HostSpace(), bar.node_twin_source);
+    const auto flip = Kokkos::create_mirror_view_and_copy(HostSpace(), bar.node_twin_flip);
+    const auto nodes = Kokkos::create_mirror_view_and_copy(HostSpace(), bar.cell_nodes);
+    for (Index c = 0; c < bar.n_cells; ++c) {
+      EXPECT_EQ(source(nodes(c, 6)), nodes(c, 1));  // (x+, y+, z+) -> (x+, y-, z-)
+      EXPECT_EQ(flip(nodes(c, 6)), 6);
+      EXPECT_EQ(source(nodes(c, 3)), nodes(c, 0));  // (x-, y+, z-) -> (x-, y-, z-)
+      EXPECT_EQ(flip(nodes(c, 3)), 2);
+      EXPECT_EQ(source(nodes(c, 4)), nodes(c, 0));
+      EXPECT_EQ(flip(nodes(c, 4)), 4);
+    }
+  }
+  // no twins in a block two cells thick, or with a free side
+  EXPECT_EQ(twinsOf(3, 2, 2, walls).node_twin_source.extent(0), 0u);
+  SideBoundaries open_top = walls;
+  open_top[5].kind = BoundaryKind::Free;
+  EXPECT_EQ(twinsOf(3, 2, 1, open_top).node_twin_source.extent(0), 0u);
+
+  // a hot corner of a gas slab expands for 15 steps, with and without twins
+  const auto run = [&](bool twins) {
+    BlockSpec block;
+    block.nx = 8;
+    block.ny = 6;
+    block.nz = 1;
+    block.hi = Vec3{1.0, 0.75, 0.125};
+    auto [setup, state] = testing::uniformBlock(
+        block, walls, MaterialParams{EosKind::IdealGas, 1.4}, 1.0, 2.5, Vec3{0.0, 0.0, 0.0});
+    auto e = Kokkos::create_mirror_view_and_copy(HostSpace(), state.E_c);
+    e(0) = e(1) = e(8) = 250.0;
+    Kokkos::deep_copy(state.E_c, e);
+    if (!twins) setup.mesh.node_twin_source = IndexView();
+    Numerics numerics;
+    PhaseTimers timers;
+    LagrangeStep lagrange(setup.mesh, state, numerics, timers);
+    for (int step = 1; step <= 15; ++step) {
+      const StepLimit limit = lagrange.computeGeometry();
+      lagrange.advance(0.5 * limit.val, step);
+    }
+    return std::make_pair(Kokkos::create_mirror_view_and_copy(HostSpace(), state.v_n),
+                          Kokkos::create_mirror_view_and_copy(HostSpace(), state.v_c));
+  };
+  const auto [v_node, v_cell] = run(true);
+  const auto [v_node_own, v_cell_own] = run(false);
+  double largest = 0.0;
+  for (std::size_t n = 0; n < v_node.extent(0); ++n)
+    largest = std::max(largest, norm(loadVec3(v_node_own, n)));
+  ASSERT_GT(largest, 0.1);  // it moved
+  for (std::size_t n = 0; n < v_node.extent(0); ++n) {
+    EXPECT_LT(norm(loadVec3(v_node, n) - loadVec3(v_node_own, n)), 1e-12 * largest) << "node " << n;
+    EXPECT_EQ(v_node(n, 2), 0.0) << "node " << n;
+  }
+  for (std::size_t c = 0; c < v_cell.extent(0); ++c) {
+    EXPECT_LT(norm(loadVec3(v_cell, c) - loadVec3(v_cell_own, c)), 1e-12 * largest) << "cell " << c;
   }
 }
 
