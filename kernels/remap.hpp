@@ -177,9 +177,12 @@ struct GradientStencil {
 // (unlimited: the limiter scales the gradient, and may zero it). A
 // neighbour without the material counts as "no change".
 template <class Normals>
-KOKKOS_FORCEINLINE_FUNCTION void limitedColumnGradient(
-    const RemapLayout& layout, const RemapFields& fields, const Normals& interface_normal, Index c,
-    int v, const GradientStencil& stencil, const Vec3 vertex[8], double beta_alpha, bool limit) {
+KOKKOS_FORCEINLINE_FUNCTION void limitedColumnGradient(const RemapLayout& layout,
+                                                       const RemapFields& fields,
+                                                       const Normals& interface_normal, Index c,
+                                                       int v, const GradientStencil& stencil,
+                                                       const VertexVectors& vertex,
+                                                       double beta_alpha, bool limit) {
   const double center = fields.primitive(c, v);
   Bounds bounds(center);
   Vec3 rhs{0.0, 0.0, 0.0};
@@ -198,8 +201,11 @@ KOKKOS_FORCEINLINE_FUNCTION void limitedColumnGradient(
     interface_normal(c, v, 1) = normal.y;
     interface_normal(c, v, 2) = normal.z;
   }
+  // (the 8 vertices' excursions in lanes, then their extremes in vertex order)
+  double delta[kHexVertices];
+  dotEach(grad, vertex, delta);
   VertexExcursion excursion;
-  for (int p = 0; p < 8; ++p) excursion.include(dot(grad, vertex[p]));
+  for (int p = 0; p < kHexVertices; ++p) excursion.include(delta[p]);
   const double beta = v < layout.n_materials ? beta_alpha : 1.0;
   const double limiter = limit ? cellLimiter(excursion, center, bounds, beta) : 1.0;
   fields.gradient(c, v, 0) = limiter * grad.x;
@@ -275,11 +281,19 @@ inline void remapGradients(const Mesh& mesh, const State& state, const RemapLayo
           lsq.addOffset(stencil.offset[f]);
         }
         stencil.solver = lsq.solver();
-        Vec3 vertex[8];
+        // vertex offsets from the centroid, in lanes (VertexVectors)
+        VertexVectors vertex;
+        for (int p = 0; p < kHexVertices; ++p) {
+          const Vec3 offset = loadVec3(x_n, cell_nodes(c, p)) - centroid;
+          vertex.x[p] = offset.x;
+          vertex.y[p] = offset.y;
+          vertex.z[p] = offset.z;
+        }
+        double length2[kHexVertices];
+        dotEach(vertex, vertex, length2);
         double reach2 = 0.0;
-        for (int p = 0; p < 8; ++p) {
-          vertex[p] = loadVec3(x_n, cell_nodes(c, p)) - centroid;
-          reach2 = dot(vertex[p], vertex[p]) > reach2 ? dot(vertex[p], vertex[p]) : reach2;
+        for (int p = 0; p < kHexVertices; ++p) {
+          reach2 = length2[p] > reach2 ? length2[p] : reach2;
         }
         fields.reach(c) = math::sqrt(reach2);
         // A mixed cell's rho^k, e^k, V and tensors are swept constant
@@ -299,7 +313,10 @@ inline void remapGradients(const Mesh& mesh, const State& state, const RemapLayo
           detail::limitedColumnGradient(layout, fields, interface_normal, c, v, stencil, vertex,
                                         beta_alpha, limit);
         }
-        if (limit) detail::limitVelocitySlopesByGasEnergy(layout, fields, materials, c, reach2);
+        // (a mixed cell's velocity slopes are zero: nothing to limit)
+        if (limit && materials_present <= 1) {
+          detail::limitVelocitySlopesByGasEnergy(layout, fields, materials, c, reach2);
+        }
       });
 }
 
@@ -319,6 +336,12 @@ struct SourceRange {
   KOKKOS_FORCEINLINE_FUNCTION void include(const RemapLayout& layout, const RemapFields& fields,
                                            Index cell, int m) {
     if (!layout.hasPrimitive(fields.density, cell, layout.mass(m))) return;
+    includeSource(layout, fields, cell, m);
+  }
+  // The same for a cell known to have material m's density (a volume and a
+  // mass, RemapLayout::hasPrimitive).
+  KOKKOS_FORCEINLINE_FUNCTION void includeSource(const RemapLayout& layout,
+                                                 const RemapFields& fields, Index cell, int m) {
     const double rho = fields.primitive(cell, layout.mass(m));
     const double e = fields.primitive(cell, layout.energy(m));
     rho_lo[m] = rho < rho_lo[m] ? rho : rho_lo[m];
@@ -409,8 +432,8 @@ KOKKOS_FORCEINLINE_FUNCTION void fluxInteriorRegion(const RemapLayout& layout,
     integral[a] += alpha_flux;
     const double alpha_up = q(up, a);
     const double mass_up = q(up, layout.mass(m));
-    if (!(alpha_up > 0.0 && mass_up > 0.0)) continue;  // nothing of m to carry
-    if (up != c) range.include(layout, fields, up, m);
+    if (!(alpha_up > 0.0 && mass_up > 0.0)) continue;         // nothing of m to carry
+    if (up != c) range.includeSource(layout, fields, up, m);  // (it has m's density)
     const double rho_up_m = w(up, layout.mass(m));
     const double e_up = w(up, layout.energy(m));
     const double mass_flux =

@@ -85,19 +85,58 @@ KOKKOS_INLINE_FUNCTION SweptRegion sweptTriangle(const Vec3& a, const Vec3& b, c
   return sweptTensorRule(a, b, c, a_target, b_target, c_target);
 }
 
+// The 4 triangles of a face in lanes, one per triangle (structure of arrays).
+struct FaceLanes {
+  double x[4], y[4], z[4];
+  KOKKOS_INLINE_FUNCTION Vec3 operator[](int k) const { return {x[k], y[k], z[k]}; }
+  KOKKOS_INLINE_FUNCTION void set(int k, const Vec3& v) {
+    x[k] = v.x;
+    y[k] = v.y;
+    z[k] = v.z;
+  }
+};
+
 // The 4 swept triangles of one face: q_lag / q_target are its 4 nodes in
 // outward order (hex::faceNode) on each mesh, and each polygon is split around
 // its own face point (DESIGN §2), which moves on a straight path like a node.
-// swept[k] belongs to triangle (q_k, q_k+1, face point).
-KOKKOS_INLINE_FUNCTION void sweptFace(const Vec3 q_lag[4], const Vec3 q_target[4],
-                                      SweptRegion swept[4]) {
+// swept[k] belongs to triangle (q_k, q_k+1, face point). The triangles are
+// evaluated in lanes (triangle k in lane k: the same operations of
+// sweptTriangle in the same order on each lane, so the same bits), which the
+// compiler vectorises across the 4 triangles (forced inline: as a call it
+// cost the kernel more).
+KOKKOS_FORCEINLINE_FUNCTION void sweptFace(const Vec3 q_lag[4], const Vec3 q_target[4],
+                                           SweptRegion swept[4]) {
   const Vec3 face_point_lag = 0.25 * (q_lag[0] + q_lag[1] + q_lag[2] + q_lag[3]);
   const Vec3 face_point_target = 0.25 * (q_target[0] + q_target[1] + q_target[2] + q_target[3]);
+  FaceLanes a, b, a_target, b_target;
   for (int k = 0; k < 4; ++k) {
     const int next = (k + 1) & 3;
-    swept[k] = sweptTriangle(q_lag[k], q_lag[next], face_point_lag, q_target[k], q_target[next],
-                             face_point_target);
+    a.set(k, q_lag[k]);
+    b.set(k, q_lag[next]);
+    a_target.set(k, q_target[k]);
+    b_target.set(k, q_target[next]);
   }
+  double volume[4];
+  FaceLanes moment;
+  for (int k = 0; k < 4; ++k) {
+    const SweptRegion region =
+        sweptTriangle(a[k], b[k], face_point_lag, a_target[k], b_target[k], face_point_target);
+    volume[k] = region.volume;
+    moment.set(k, region.moment);
+  }
+  for (int k = 0; k < 4; ++k) swept[k] = {volume[k], moment[k]};
+}
+
+// Whether the 4 points q_lag, q_target share coordinate `axis` (0, 1, 2: x,
+// y, z) with q_lag[0], stopping at the first that does not.
+KOKKOS_INLINE_FUNCTION bool sharesCoordinate(const Vec3 q_lag[4], const Vec3 q_target[4],
+                                             int axis) {
+  auto coordinate = [axis](const Vec3& q) { return axis == 0 ? q.x : (axis == 1 ? q.y : q.z); };
+  const double plane = coordinate(q_lag[0]);
+  for (int k = 0; k < 4; ++k) {
+    if (!(coordinate(q_lag[k]) == plane && coordinate(q_target[k]) == plane)) return false;
+  }
+  return true;
 }
 
 // True when a face's Lagrangian and target positions all lie in one plane
@@ -108,13 +147,10 @@ KOKKOS_INLINE_FUNCTION void sweptFace(const Vec3 q_lag[4], const Vec3 q_target[4
 // displacement in it): a one-cell slab's two faces on its symmetry planes,
 // half of its swept faces, need no swept-region computation.
 KOKKOS_INLINE_FUNCTION bool staysInOneAxisPlane(const Vec3 q_lag[4], const Vec3 q_target[4]) {
-  bool same[3] = {true, true, true};
-  for (int k = 0; k < 4; ++k) {
-    same[0] = same[0] && q_lag[k].x == q_lag[0].x && q_target[k].x == q_lag[0].x;
-    same[1] = same[1] && q_lag[k].y == q_lag[0].y && q_target[k].y == q_lag[0].y;
-    same[2] = same[2] && q_lag[k].z == q_lag[0].z && q_target[k].z == q_lag[0].z;
-  }
-  return same[0] || same[1] || same[2];
+  // (one axis after the other, each stopping at its first difference: a face
+  // normal to z costs a few comparisons along x and along y)
+  return sharesCoordinate(q_lag, q_target, 0) || sharesCoordinate(q_lag, q_target, 1) ||
+         sharesCoordinate(q_lag, q_target, 2);
 }
 
 }  // namespace swept
