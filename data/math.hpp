@@ -64,8 +64,7 @@ KOKKOS_INLINE_FUNCTION void dotEach(const Vec3& g, const VertexVectors& d, doubl
   for (int p = 0; p < kHexVertices; ++p) out[p] = g.x * d.x[p] + g.y * d.y[p] + g.z * d.z[p];
 }
 // out_p = dot(a_p, b_p) at every vertex p.
-KOKKOS_INLINE_FUNCTION void dotEach(const VertexVectors& a, const VertexVectors& b,
-                                    double out[8]) {
+KOKKOS_INLINE_FUNCTION void dotEach(const VertexVectors& a, const VertexVectors& b, double out[8]) {
   LAGREMAP_LANES
   for (int p = 0; p < kHexVertices; ++p) {
     out[p] = a.x[p] * b.x[p] + a.y[p] * b.y[p] + a.z[p] * b.z[p];
