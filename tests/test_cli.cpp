@@ -49,6 +49,7 @@ TEST(CommandLine, MalformedInputGivesExitCodeTwoAndOneLine) {
       {"--problem sod --set mesh.nx=abc", "mesh.nx"},
       {"--problem sod --set mesh.nx=0", "mesh"},
       {"--problem sod --set numerics.cfl=2", "numerics.cfl"},
+      {"--problem sod --set numerics.dt_drop_fraction=1.5", "numerics.dt_drop_fraction"},
       {"--problem sod --set =3", "key=value"},
       {"--problem sod --set bc.xmin=sticky", "bc.xmin"},
       {"--problem sod --set left.rho=-1", "densities"},
