@@ -57,6 +57,11 @@ constexpr int kHexVertices = 8;
 struct VertexVectors {
   double x[kHexVertices], y[kHexVertices], z[kHexVertices];
   KOKKOS_INLINE_FUNCTION Vec3 operator[](int p) const { return {x[p], y[p], z[p]}; }
+  KOKKOS_INLINE_FUNCTION void set(int p, const Vec3& v) {
+    x[p] = v.x;
+    y[p] = v.y;
+    z[p] = v.z;
+  }
 };
 // out_p = dot(g, d_p) at every vertex p.
 KOKKOS_INLINE_FUNCTION void dotEach(const Vec3& g, const VertexVectors& d, double out[8]) {

@@ -150,6 +150,14 @@ struct VertexTensors {
   KOKKOS_INLINE_FUNCTION SymMat3 operator[](int p) const {
     return {c[0][p], c[1][p], c[2][p], c[3][p], c[4][p], c[5][p]};
   }
+  KOKKOS_INLINE_FUNCTION void set(int p, const SymMat3& t) {
+    c[0][p] = t.xx;
+    c[1][p] = t.yy;
+    c[2][p] = t.zz;
+    c[3][p] = t.xy;
+    c[4][p] = t.yz;
+    c[5][p] = t.xz;
+  }
 };
 
 // A solid's node stresses: the whole Cauchy stress limited as a tensor by one
@@ -245,15 +253,9 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
         detail::VertexTensors sigma_node;  // solid
         if (!second_order) {
           for (int p = 0; p < kHexVertices; ++p) {
-            v_node.x[p] = v_cell.x;
-            v_node.y[p] = v_cell.y;
-            v_node.z[p] = v_cell.z;
+            v_node.set(p, v_cell);
             p_node[p] = p_cell;
-          }
-          const double cell[6] = {sigma_cell.xx, sigma_cell.yy, sigma_cell.zz,
-                                  sigma_cell.xy, sigma_cell.yz, sigma_cell.xz};
-          for (int i = 0; i < 6; ++i) {
-            for (int p = 0; p < kHexVertices; ++p) sigma_node.c[i][p] = cell[i];
+            sigma_node.set(p, sigma_cell);
           }
         } else {
           Vec3 x[8];
@@ -265,11 +267,7 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
           const Vec3 centroid = loadVec3(s.x_c, c);
           VertexVectors offsets;
           LAGREMAP_LANES
-          for (int p = 0; p < kHexVertices; ++p) {
-            offsets.x[p] = x[p].x - centroid.x;
-            offsets.y[p] = x[p].y - centroid.y;
-            offsets.z[p] = x[p].z - centroid.z;
-          }
+          for (int p = 0; p < kHexVertices; ++p) offsets.set(p, x[p] - centroid);
           const double sound_speed = s.aL_c(c);
           const double stress_scale = s.rho_c(c) * sound_speed * sound_speed;
           detail::limitedNodeVelocities(stencil, inv, offsets, v_cell, sound_speed, solid, v_node);

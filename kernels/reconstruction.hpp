@@ -187,11 +187,7 @@ template <bool plateau_guard, bool vertex_sums>
 KOKKOS_INLINE_FUNCTION double projectedLimiter(const Vec3 jumps[6], const Vec3 directions[8],
                                                const double length2[8]) {
   VertexVectors lanes;
-  for (int p = 0; p < kHexVertices; ++p) {
-    lanes.x[p] = directions[p].x;
-    lanes.y[p] = directions[p].y;
-    lanes.z[p] = directions[p].z;
-  }
+  for (int p = 0; p < kHexVertices; ++p) lanes.set(p, directions[p]);
   return projectedLimiter<plateau_guard, vertex_sums>(jumps, lanes, length2);
 }
 

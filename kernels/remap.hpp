@@ -284,10 +284,7 @@ inline void remapGradients(const Mesh& mesh, const State& state, const RemapLayo
         // vertex offsets from the centroid, in lanes (VertexVectors)
         VertexVectors vertex;
         for (int p = 0; p < kHexVertices; ++p) {
-          const Vec3 offset = loadVec3(x_n, cell_nodes(c, p)) - centroid;
-          vertex.x[p] = offset.x;
-          vertex.y[p] = offset.y;
-          vertex.z[p] = offset.z;
+          vertex.set(p, loadVec3(x_n, cell_nodes(c, p)) - centroid);
         }
         double length2[kHexVertices];
         dotEach(vertex, vertex, length2);

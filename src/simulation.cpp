@@ -132,8 +132,6 @@ std::string Simulation::stopReason(const TimeStepChoice& choice) const {
     return "step " + std::to_string(loop_.step) +
            ": numerics.max_steps reached at t = " + std::to_string(loop_.time);
   }
-  const std::string limited_by = std::string(limitReason(limit_)) + " limited, cell " +
-                                 std::to_string(limit_.loc / kLimitCodes);
   if (choice.dt < numerics_.dt_min && !choice.lands_on_end() && !choice.lands_on_output()) {
     return "step " + std::to_string(loop_.step + 1) +
            ": time step collapse, dt = " + shortNumber(choice.dt) + " (" + choice.reason +
@@ -143,7 +141,8 @@ std::string Simulation::stopReason(const TimeStepChoice& choice) const {
     return "step " + std::to_string(loop_.step + 1) +
            ": time step collapse at t = " + shortNumber(loop_.time) + ", stable dt " +
            shortNumber(limit_.val) + " s below " + shortNumber(numerics_.dt_drop_fraction) +
-           " of the run's largest, " + shortNumber(loop_.dt_stable_max) + " s (" + limited_by +
+           " of the run's largest, " + shortNumber(loop_.dt_stable_max) + " s (" +
+           limitReason(limit_) + " limited, cell " + std::to_string(limit_.loc / kLimitCodes) +
            "; numerics.dt_drop_fraction)";
   }
   return "";

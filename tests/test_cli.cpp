@@ -358,6 +358,24 @@ TEST(CommandLine, FailureMidRunGivesExitCodeThreeAndWritesLastGoodState) {
   std::filesystem::remove_all(dir);
 }
 
+// The largest stable dt of a run (numerics.dt_drop_fraction) travels in its
+// checkpoint: sedov's stable dt peaks and, two steps later, falls below 0.78
+// of its peak (the stop before step 44), so a run restarted at step 42 stops
+// where the uninterrupted one does (without the record, measured: step 61).
+TEST(CommandLine, RestartKeepsTheLargestStableTimeStep) {
+  const std::string dir = testing::scratchDir("cli_restart_drop");
+  const std::string run = "--problem sedov --set numerics.dt_drop_fraction=0.78 --quiet";
+  const auto whole = runLagremap(run + " --output " + dir + "/whole");
+  ASSERT_EQ(whole.exit_code, 3) << whole.output;
+  ASSERT_NE(whole.error.find("step 44: time step collapse"), std::string::npos) << whole.error;
+  const std::string stopped = run + " --output " + dir + "/stopped";
+  ASSERT_EQ(runLagremap(stopped + " --set numerics.max_steps=42").exit_code, 3);
+  const auto resumed = runLagremap(stopped + " --restart " + dir + "/stopped/checkpoint.h5");
+  EXPECT_EQ(resumed.exit_code, 3) << resumed.output;
+  EXPECT_NE(resumed.error.find("step 44: time step collapse"), std::string::npos) << resumed.error;
+  std::filesystem::remove_all(dir);
+}
+
 TEST(CommandLine, RestartFinishesAStoppedRunAndRefusesABadCheckpoint) {
   const std::string dir = testing::scratchDir("cli_restart");
   const std::string run = "--problem sod --scale 0.5 --quiet --output " + dir + "/run";
