@@ -50,6 +50,12 @@ struct Mesh {
   // Empty when the mesh has no twins.
   IndexView node_twin_source;
   DeviceView<int*> node_twin_flip;
+  // Every cell is a right prism along z, at all times (hex::prismGeometry):
+  // a one-cell slab between two z wall/symmetry planes (its z twins share x
+  // and y, its nodes have no z velocity), whose bottom nodes lie on one z
+  // plane and top nodes on another. Set by findNodeTwins, the same on every
+  // rank.
+  bool z_prisms = false;
 
   // Boundary data of the nodal solver.
   DeviceView<int*> node_constrained;  // 1 if the node has a velocity constraint

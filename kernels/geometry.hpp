@@ -312,9 +312,10 @@ KOKKOS_INLINE_FUNCTION void cellShapeForRemap(const hex::CellShape& shape, const
   if (!finite_state) proposeStepLimit(best, -1.0, c, kBadState);
 }
 
-// The same, the geometry computed from the cell's nodes.
+// The same, the geometry computed from the cell's nodes (`z_prism`:
+// Mesh::z_prisms).
 KOKKOS_INLINE_FUNCTION void cellGeometryAndThermo(const CellNodesView& cell_nodes,
-                                                  const Vec3View& x_n, const State& s,
+                                                  const Vec3View& x_n, bool z_prism, const State& s,
                                                   const TimeStepControls& controls, Index c,
                                                   StepLimit& best, bool end_of_stage = false,
                                                   StageEnd what = StageEnd::Full,
@@ -323,10 +324,10 @@ KOKKOS_INLINE_FUNCTION void cellGeometryAndThermo(const CellNodesView& cell_node
   gatherCellNodes(cell_nodes, x_n, c, x);
   hex::CellGeometry geo;
   if (what == StageEnd::Full) {
-    hex::cellGeometry<true>(x, geo);
+    hex::cellGeometry<true>(x, z_prism, geo);
     cellThermoOnGeometry(geo, s, controls, c, best, end_of_stage, relaxation);
   } else {
-    hex::cellGeometry<false>(x, geo);
+    hex::cellGeometry<false>(x, z_prism, geo);
     cellShapeForRemap(geo.shape, s, c, best, relaxation);
   }
 }
@@ -340,6 +341,7 @@ using CellGeometryView = DeviceView<hex::CellGeometry*>;
 inline CellGeometryView fixedMeshGeometry(const Mesh& mesh) {
   const auto cell_nodes = mesh.cell_nodes;
   const auto x_n = mesh.x_n;
+  const bool z_prisms = mesh.z_prisms;
   CellGeometryView geometry(
       Kokkos::view_alloc(Kokkos::WithoutInitializing, "lagremap::remap::target_geometry"),
       mesh.n_cells);
@@ -348,7 +350,7 @@ inline CellGeometryView fixedMeshGeometry(const Mesh& mesh) {
       KOKKOS_LAMBDA(const Index c) {
         Vec3 x[8];
         gatherCellNodes(cell_nodes, x_n, c, x);
-        hex::cellGeometry(x, geometry(c));
+        hex::cellGeometry(x, z_prisms, geometry(c));
       });
   return geometry;
 }
@@ -376,10 +378,11 @@ inline StepLimit computeGeometry(const Mesh& mesh, const State& state,
                                  const TimeStepControls& controls) {
   const auto cell_nodes = mesh.cell_nodes;
   const auto x_n = mesh.x_n;
+  const bool z_prisms = mesh.z_prisms;
   const auto s = state;
   return stepLimitOverCells(
       "lagremap::geometry::cells", mesh, KOKKOS_LAMBDA(const Index c, StepLimit& best) {
-        cellGeometryAndThermo(cell_nodes, x_n, s, controls, c, best);
+        cellGeometryAndThermo(cell_nodes, x_n, z_prisms, s, controls, c, best);
       });
 }
 

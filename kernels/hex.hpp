@@ -179,6 +179,102 @@ KOKKOS_INLINE_FUNCTION void cellGeometry(const Vec3 x[8], CellGeometry& g) {
   }
 }
 
+// A right prism along z (Mesh::z_prisms, a one-cell slab between symmetry
+// planes): top node p + 4 straight above bottom node p (same x and y), the
+// bottom nodes on one z plane, the top ones on another. Its 24-facet
+// polyhedron is the prism over the planar bottom quad P_0..P_3, and the sums
+// of cellGeometry have closed forms (docs/method.md §2.6), from the quad's 4
+// triangles (P_k, P_k+1, F) around its mean point F, of doubled areas
+//   T_k = (P_k+1 - P_k) x (F - P_k) (2D cross products),
+// and its 4 side faces, rectangles of area vector S_k = h (e_k.y, -e_k.x, 0)
+// over the edges e_k = P_k+1 - P_k (h the height):
+//  - a side face's 4 triangles are a quarter of it each, so each of its 4
+//    nodes gets the corner-face vector S_k / 4 (area |S_k| / 4, normal
+//    S_k / |S_k|);
+//  - the top face gives node p + 4 the vector w_p e_z and the bottom face
+//    gives node p -w_p e_z, w_p = 1/6 (T_p-1 + T_p + 1/4 sum T);
+//  - volume h sum T / 2, centroid (sum T_k (P_k + P_k+1 + F) / (3 sum T),
+//    z_0 + h / 2), faces of area |sum T| / 2 and |S_k|.
+// The same numbers as cellGeometry up to round-off (test_geometry), with 4
+// square roots and 4 divisions instead of 24 each. Same template argument.
+template <bool kCornerSums = true>
+KOKKOS_INLINE_FUNCTION void prismGeometry(const Vec3 x[8], CellGeometry& g) {
+  const Vec3 origin = x[0];
+  const double height = x[4].z - origin.z;
+  double px[4], py[4];  // the bottom quad relative to node 0
+  for (int k = 0; k < 4; ++k) {
+    px[k] = x[k].x - origin.x;
+    py[k] = x[k].y - origin.y;
+  }
+  const double fx = 0.25 * (px[0] + px[1] + px[2] + px[3]);
+  const double fy = 0.25 * (py[0] + py[1] + py[2] + py[3]);
+  double doubled[4], edge_x[4], edge_y[4], edge2[4];
+  double twice_area = 0.0, weighted_x = 0.0, weighted_y = 0.0, longest2 = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    const int next = (k + 1) & 3;
+    edge_x[k] = px[next] - px[k];
+    edge_y[k] = py[next] - py[k];
+    doubled[k] = edge_x[k] * (fy - py[k]) - edge_y[k] * (fx - px[k]);
+    twice_area += doubled[k];
+    weighted_x += doubled[k] * (px[k] + px[next] + fx);
+    weighted_y += doubled[k] * (py[k] + py[next] + fy);
+    edge2[k] = edge_x[k] * edge_x[k] + edge_y[k] * edge_y[k];
+    longest2 = edge2[k] > longest2 ? edge2[k] : longest2;
+  }
+  const double quad_area = 0.5 * twice_area;
+  const double side2 = height * height * longest2;
+  const double max_area2 = quad_area * quad_area > side2 ? quad_area * quad_area : side2;
+  const double third_over_area = 1.0 / (3.0 * twice_area);
+  g.shape = {
+      quad_area * height,
+      origin + Vec3{third_over_area * weighted_x, third_over_area * weighted_y, 0.5 * height},
+      math::sqrt(max_area2)};
+  if constexpr (!kCornerSums) return;
+  // a side face's quarter: vector, area and normal moment S (x) S / (4 |S|)
+  // (in the xy block; a degenerate face adds no moment or area)
+  double quarter_x[4], quarter_y[4], quarter_area[4], moment_xx[4], moment_yy[4], moment_xy[4];
+  for (int k = 0; k < 4; ++k) {
+    quarter_x[k] = 0.25 * height * edge_y[k];
+    quarter_y[k] = -0.25 * height * edge_x[k];
+    const double length = math::sqrt(edge2[k]);
+    const double scale = length > 0.0 && height > 0.0 ? 0.25 * height / length : 0.0;
+    quarter_area[k] = 0.25 * height * length;
+    moment_xx[k] = scale * (edge_y[k] * edge_y[k]);
+    moment_yy[k] = scale * (edge_x[k] * edge_x[k]);
+    moment_xy[k] = -scale * (edge_x[k] * edge_y[k]);
+  }
+  for (int p = 0; p < 4; ++p) {
+    const int before = (p + 3) & 3;  // the side faces of node p: edges p - 1 and p
+    const double w = (1.0 / 6.0) * (doubled[before] + doubled[p] + 0.25 * twice_area);
+    const double w_size = math::fabs(w);
+    const double in_plane_x = quarter_x[before] + quarter_x[p];
+    const double in_plane_y = quarter_y[before] + quarter_y[p];
+    const SymMat3 moment{moment_xx[before] + moment_xx[p],
+                         moment_yy[before] + moment_yy[p],
+                         w_size,
+                         moment_xy[before] + moment_xy[p],
+                         0.0,
+                         0.0};
+    const double area = quarter_area[before] + quarter_area[p] + w_size;
+    g.corner[p] = Vec3{in_plane_x, in_plane_y, -w};
+    g.corner[p + 4] = Vec3{in_plane_x, in_plane_y, w};
+    g.normal_moment[p] = moment;
+    g.normal_moment[p + 4] = moment;
+    g.corner_face_area[p] = area;
+    g.corner_face_area[p + 4] = area;
+  }
+}
+
+// The geometry of a cell, in closed form when it is a z prism.
+template <bool kCornerSums = true>
+KOKKOS_INLINE_FUNCTION void cellGeometry(const Vec3 x[8], bool z_prism, CellGeometry& g) {
+  if (z_prism) {
+    prismGeometry<kCornerSums>(x, g);
+  } else {
+    cellGeometry<kCornerSums>(x, g);
+  }
+}
+
 // The 8 corner vectors A_cp = sum_f s_pf n_pf = d v_c / d x_p (GCL, DESIGN §2).
 KOKKOS_INLINE_FUNCTION void cornerVectors(const Vec3 x[8], Vec3 corner[8]) {
   for (int p = 0; p < 8; ++p) corner[p] = Vec3{0.0, 0.0, 0.0};

@@ -745,13 +745,15 @@ inline StepLimit updateCellsAndGeometry(const Mesh& mesh, const State& state, do
                                         StageEnd what = StageEnd::Full) {
   const auto cell_nodes = mesh.cell_nodes;
   const auto x_n = mesh.x_n;
+  const bool z_prisms = mesh.z_prisms;
   const auto s = state;
   return stepLimitOverCells(
       "lagremap::cell_update::update_and_geometry", mesh,
       KOKKOS_LAMBDA(const Index c, StepLimit& best) {
         StageRelaxation relaxation;
         updateCell(cell_nodes, x_n, s, dt_stage, c, relaxation);
-        cellGeometryAndThermo(cell_nodes, x_n, s, controls, c, best, true, what, &relaxation);
+        cellGeometryAndThermo(cell_nodes, x_n, z_prisms, s, controls, c, best, true, what,
+                              &relaxation);
       });
 }
 

@@ -127,6 +127,70 @@ KOKKOS_FORCEINLINE_FUNCTION void sweptFace(const Vec3 q_lag[4], const Vec3 q_tar
   for (int k = 0; k < 4; ++k) swept[k] = {volume[k], moment[k]};
 }
 
+// The 4 swept triangles of a side face of a z prism (Mesh::z_prisms), in
+// closed form (docs/method.md §5.2). The face is the rectangle over the
+// bottom edge from a to b (cell order, so that e x e_z points out of the
+// cell) and its height h; its nodes move in the xy plane only, so at every
+// tau it is still a rectangle over the edge A(tau) B(tau). With s along the
+// edge, z up the face and tau in time, the swept region is
+// x(s, z, tau) = A(tau) + s E(tau) + z e_z, whose Jacobian is
+//   sigma(s, tau) = D(s) . (E(tau) x e_z) = alpha + beta s + gamma tau,
+// D(s) = d_a + s (d_b - d_a) the displacement, E(tau) = e + tau (d_b - d_a).
+// Each of the face's 4 triangles around its centre covers, at s, a z range
+// [z_lo(s), z_hi(s)] of width h w_t(s): the bottom and top triangles the tent
+// w = min(s, 1 - s), the side triangles 2 s - 1 (s > 1/2) and 1 - 2 s
+// (s < 1/2). So dV_t = h int w_t sigma and M_t = int (x, y) h w_t sigma and
+// int (z_hi^2 - z_lo^2) / 2 sigma, polynomial integrals in s and tau, from
+// the moments mu_i = int w_t s^i ds of each weight (tent 1/4, 1/8, 7/96;
+// right 1/4, 5/24, 17/96; left 1/4, 1/24, 1/96) and nu_i = int min(s, 1 -
+// s)^2 s^i ds = 1/12, 1/24 for the z moments of the bottom and top
+// triangles. The same regions as sweptFace's, to round-off (test_swept_face).
+KOKKOS_INLINE_FUNCTION void sweptPrismSide(const Vec3& a, const Vec3& b, const Vec3& a_target,
+                                           const Vec3& b_target, double height,
+                                           SweptRegion swept[4]) {
+  auto cross2 = [](double ux, double uy, double vx, double vy) { return ux * vy - uy * vx; };
+  const double ex = b.x - a.x, ey = b.y - a.y;
+  const double dax = a_target.x - a.x, day = a_target.y - a.y;
+  const double dex = (b_target.x - b.x) - dax, dey = (b_target.y - b.y) - day;
+  // sigma = D(s) . (E(tau) x e_z) = cross2(D, E)
+  const double alpha = cross2(dax, day, ex, ey);
+  const double beta = cross2(dex, dey, ex, ey);
+  const double gamma = cross2(dax, day, dex, dey);
+  constexpr double kMu[3][3] = {{1.0 / 4.0, 1.0 / 8.0, 7.0 / 96.0},    // bottom and top
+                                {1.0 / 4.0, 5.0 / 24.0, 17.0 / 96.0},  // side at b
+                                {1.0 / 4.0, 1.0 / 24.0, 1.0 / 96.0}};  // side at a
+  const double z_bottom = a.z, z_middle = a.z + 0.5 * height;
+  // (z_hi^2 - z_lo^2) / 2 of the bottom triangle relative to z_bottom: h^2 w^2 / 2
+  const double bottom_z =
+      0.5 * height * height * (alpha * (1.0 / 12.0) + beta * (1.0 / 24.0) + gamma * (1.0 / 24.0));
+  for (int t = 0; t < 3; ++t) {
+    const double* mu = kMu[t];
+    // int w sigma, int w tau sigma, int w s sigma, int w s tau sigma
+    const double w_sigma = alpha * mu[0] + beta * mu[1] + 0.5 * gamma * mu[0];
+    const double w_tau = 0.5 * alpha * mu[0] + 0.5 * beta * mu[1] + (1.0 / 3.0) * gamma * mu[0];
+    const double w_s = alpha * mu[1] + beta * mu[2] + 0.5 * gamma * mu[1];
+    const double w_s_tau = 0.5 * alpha * mu[1] + 0.5 * beta * mu[2] + (1.0 / 3.0) * gamma * mu[1];
+    const double volume = height * w_sigma;
+    // int (a + tau d_a + s e + s tau d_e) h w sigma, relative to a
+    const double moment_x = height * (w_tau * dax + w_s * ex + w_s_tau * dex);
+    const double moment_y = height * (w_tau * day + w_s * ey + w_s_tau * dey);
+    const Vec3 in_plane{a.x * volume + moment_x, a.y * volume + moment_y, 0.0};
+    if (t == 0) {  // bottom and top: the same volume and xy moment
+      swept[0] = {volume, Vec3{in_plane.x, in_plane.y, z_bottom * volume + bottom_z}};
+      swept[2] = {volume,
+                  Vec3{in_plane.x, in_plane.y, z_bottom * volume + height * volume - bottom_z}};
+    } else {
+      swept[t == 1 ? 1 : 3] = {volume, Vec3{in_plane.x, in_plane.y, z_middle * volume}};
+    }
+  }
+}
+
+// The bottom edge (k, k + 1) of side face f (0 x-, 1 x+, 2 y-, 3 y+) of a
+// hexahedron, in the order that puts the cell on its left.
+KOKKOS_INLINE_FUNCTION int prismSideEdge(int f) {
+  return f == 0 ? 3 : (f == 1 ? 1 : (f == 2 ? 0 : 2));
+}
+
 // Whether the 4 points q_lag, q_target share coordinate `axis` (0, 1, 2: x,
 // y, z) with q_lag[0], stopping at the first that does not.
 KOKKOS_INLINE_FUNCTION bool sharesCoordinate(const Vec3 q_lag[4], const Vec3 q_target[4],
@@ -199,6 +263,7 @@ inline void computeSweptFaces(const Mesh& mesh, const Vec3View& x_lag, const Vec
   const auto cell_neighbor_face = mesh.cell_neighbor_face;
   const auto dvol_r = swept_faces.dvol_r;
   const auto moment_r = swept_faces.moment_r;
+  const bool z_prisms = mesh.z_prisms;
   Kokkos::parallel_for(
       "lagremap::remap::swept_faces", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
       KOKKOS_LAMBDA(const Index c) {
@@ -218,7 +283,13 @@ inline void computeSweptFaces(const Mesh& mesh, const Vec3View& x_lag, const Vec
           swept::SweptRegion side[2] = {{0.0, Vec3{0.0, 0.0, 0.0}}, {0.0, Vec3{0.0, 0.0, 0.0}}};
           if (!(neighbor < 0 && swept::staysInOneAxisPlane(q_lag, q_target))) {
             swept::SweptRegion swept[4];
-            swept::sweptFace(q_lag, q_target, swept);
+            if (z_prisms && f < 4) {  // a side face of a prism: closed form
+              const int k = swept::prismSideEdge(f), next = (k + 1) & 3;
+              swept::sweptPrismSide(x_cell_lag[k], x_cell_lag[next], x_cell_target[k],
+                                    x_cell_target[next], x_cell_lag[4].z - x_cell_lag[0].z, swept);
+            } else {
+              swept::sweptFace(q_lag, q_target, swept);
+            }
             for (int k = 0; k < 4; ++k) {
               swept::SweptRegion& into = side[swept[k].volume > 0.0 ? kGainedSide : kGivenSide];
               into.volume += swept[k].volume;

@@ -404,6 +404,10 @@ Subdomain decompose(const Mesh& global) {
   mesh.n_global_cells = global.n_cells;
   mesh.n_global_nodes = global.n_nodes;
   findNodeTwins(mesh);
+  // one decision for every rank (the prism formulas differ from the general
+  // ones in round-off, and results may not depend on the rank count): the
+  // whole mesh's
+  mesh.z_prisms = global.z_prisms;
 
   sub.halo.cell_links = makeLinks(local.cells, local.cell_owner, local.cell_local, "cell");
   sub.halo.node_links = makeLinks(local.nodes, local.node_owner, local.node_local, "node");

@@ -285,6 +285,20 @@ namespace {
 int partnerAcross(int axis, int p) {
   return axis == 0 ? p ^ 1 : axis == 1 ? p ^ 3 : p ^ 4;
 }
+// Whether every cell of a mesh thin along z (twins across it sharing x and
+// y) has its 4 bottom nodes on one z plane and its 4 top nodes on another
+// above it: then it is a right prism along z (hex::prismGeometry).
+template <class Nodes, class Coordinates>
+bool zPrisms(const Nodes& nodes, const Coordinates& x, Index n_cells) {
+  for (Index c = 0; c < n_cells; ++c) {
+    const double bottom = x(nodes(c, 0), 2), top = x(nodes(c, 4), 2);
+    if (!(top > bottom)) return false;
+    for (int p = 1; p < 4; ++p) {
+      if (x(nodes(c, p), 2) != bottom || x(nodes(c, p + 4), 2) != top) return false;
+    }
+  }
+  return true;
+}
 bool onMinusSide(int axis, int p) {
   if (axis == 0) return ((p ^ (p >> 1)) & 1) == 0;  // x-: 0, 3, 4, 7
   if (axis == 1) return (p & 2) == 0;               // y-: 0, 1, 4, 5
@@ -303,6 +317,7 @@ void findNodeTwins(Mesh& mesh) {
   std::vector<int> flip(std::size_t(mesh.n_nodes), 0);
   for (Index n = 0; n < mesh.n_nodes; ++n) source[std::size_t(n)] = n;
   bool any = false;
+  mesh.z_prisms = false;
   for (int axis = 0; axis < 3; ++axis) {
     const auto between_walls = [&](Index c, int f) {
       return neighbors(c, f) < 0 && face_side(c, f) >= 0 &&
@@ -318,6 +333,7 @@ void findNodeTwins(Mesh& mesh) {
     }
     if (!thin) continue;
     any = true;
+    if (axis == 2) mesh.z_prisms = zPrisms(nodes, x, mesh.n_cells);
     // the plus side's node takes its minus partner's source (composed over
     // the axes: a bar's four nodes of a station take the (-, -) one's)
     for (Index c = 0; c < mesh.n_cells; ++c) {

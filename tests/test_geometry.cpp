@@ -127,6 +127,57 @@ TEST(Geometry, FusedCellGeometryMatchesTheReferenceFormulas) {
   }
 }
 
+// A right prism along z (a one-cell slab's cell, Mesh::z_prisms): the
+// closed forms of hex::prismGeometry give the general sweep's volume,
+// centroid, face area, corner vectors and impedance sums to round-off, on
+// distorted (non-convex too) quads far from the origin, thin and thick.
+TEST(Geometry, PrismGeometryIsTheGeneralSweepOfAPrism) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (int trial = 0; trial < 200; ++trial) {
+    const Vec3 offset{-30.0 + unit(rng), 12.0 + unit(rng), 5.0 + unit(rng)};
+    const double height = trial % 2 ? 0.02 : 1.3 + unit(rng);  // a thin slab and a thick one
+    const double amplitude = trial % 4 < 2 ? 0.2 : 0.45;       // 0.45: some quads not convex
+    Vec3 x[8];
+    unitCube(x);
+    for (int p = 0; p < 4; ++p) {
+      x[p] = offset + Vec3{x[p].x + amplitude * unit(rng), x[p].y + amplitude * unit(rng), 0.0};
+      x[p + 4] = Vec3{x[p].x, x[p].y, offset.z + height};
+    }
+    hex::CellGeometry general, prism, prism_shape;
+    hex::cellGeometry(x, general);
+    hex::prismGeometry(x, prism);
+    hex::prismGeometry<false>(x, prism_shape);
+    ASSERT_GT(general.shape.volume, 0.0);
+    const double area = general.shape.max_face_area;
+    EXPECT_NEAR(prism.shape.volume, general.shape.volume, 1e-13 * general.shape.volume);
+    EXPECT_LT(norm(prism.shape.centroid - general.shape.centroid), 1e-13 * norm(offset));
+    EXPECT_NEAR(prism.shape.max_face_area, area, 1e-13 * area);
+    for (int p = 0; p < 8; ++p) {
+      EXPECT_LT(norm(prism.corner[p] - general.corner[p]), 1e-13 * area) << "corner " << p;
+      EXPECT_NEAR(prism.corner_face_area[p], general.corner_face_area[p], 1e-13 * area);
+      const SymMat3 d = prism.normal_moment[p] - general.normal_moment[p];
+      EXPECT_LT(std::sqrt(ddot(d, d)), 1e-13 * area) << "corner " << p;
+    }
+    // the shape alone is the same bits as with the corner sums
+    EXPECT_EQ(prism_shape.shape.volume, prism.shape.volume);
+    EXPECT_EQ(prism_shape.shape.centroid.x, prism.shape.centroid.x);
+    EXPECT_EQ(prism_shape.shape.centroid.y, prism.shape.centroid.y);
+    EXPECT_EQ(prism_shape.shape.centroid.z, prism.shape.centroid.z);
+    EXPECT_EQ(prism_shape.shape.max_face_area, prism.shape.max_face_area);
+  }
+  // the unit cube exactly
+  Vec3 cube[8];
+  unitCube(cube);
+  hex::CellGeometry unit_prism;
+  hex::prismGeometry(cube, unit_prism);
+  EXPECT_EQ(unit_prism.shape.volume, 1.0);
+  EXPECT_EQ(unit_prism.shape.max_face_area, 1.0);
+  EXPECT_EQ(unit_prism.corner[6].x, 0.25);
+  EXPECT_EQ(unit_prism.corner[6].z, 0.25);
+  EXPECT_EQ(unit_prism.corner_face_area[0], 0.75);
+}
+
 TEST(Geometry, AffineImagesOfTheCubeAreExact) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);

@@ -81,7 +81,8 @@ TEST(Lagrange, FreeStreamIsPreservedOnADistortedMesh) {
 // A one-cell slab between symmetry planes (and a bar, thin in two
 // directions): findNodeTwins pairs each node with its partner across the
 // thin direction, and the nodal solve that copies the partner's solution
-// gives what every node's own solve gives, to round-off.
+// gives what every node's own solve gives, to round-off; so does the prism
+// geometry of a slab's cells against the general one.
 TEST(Lagrange, SlabTwinNodesMoveAsTheirOwnSolveWouldMoveThem) {
   SideBoundaries walls;  // every side a wall (symmetry)
   const auto twinsOf = [&](int nx, int ny, int nz, const SideBoundaries& sides) {
@@ -124,8 +125,16 @@ TEST(Lagrange, SlabTwinNodesMoveAsTheirOwnSolveWouldMoveThem) {
   SideBoundaries open_top = walls;
   open_top[5].kind = BoundaryKind::Free;
   EXPECT_EQ(twinsOf(3, 2, 1, open_top).node_twin_source.extent(0), 0u);
+  // ... and cells that are z prisms (hex::prismGeometry) in the slab and the
+  // bar only
+  EXPECT_TRUE(twinsOf(3, 2, 1, walls).z_prisms);
+  EXPECT_TRUE(twinsOf(4, 1, 1, walls).z_prisms);
+  EXPECT_FALSE(twinsOf(3, 2, 2, walls).z_prisms);
+  EXPECT_FALSE(twinsOf(3, 2, 1, open_top).z_prisms);
+  EXPECT_FALSE(twinsOf(1, 2, 3, walls).z_prisms);  // thin along x: not along z
 
   // a hot corner of a gas slab expands for 15 steps, with and without twins
+  // and prism geometry
   const auto run = [&](bool twins) {
     BlockSpec block;
     block.nx = 8;
@@ -137,7 +146,11 @@ TEST(Lagrange, SlabTwinNodesMoveAsTheirOwnSolveWouldMoveThem) {
     auto e = Kokkos::create_mirror_view_and_copy(HostSpace(), state.E_c);
     e(0) = e(1) = e(8) = 250.0;
     Kokkos::deep_copy(state.E_c, e);
-    if (!twins) setup.mesh.node_twin_source = IndexView();
+    EXPECT_TRUE(setup.mesh.z_prisms);
+    if (!twins) {
+      setup.mesh.node_twin_source = IndexView();
+      setup.mesh.z_prisms = false;
+    }
     Numerics numerics;
     PhaseTimers timers;
     LagrangeStep lagrange(setup.mesh, state, numerics, timers);

@@ -220,6 +220,108 @@ TEST(SweptFace, FaceSidesSumTheTrianglesByUpwindCell) {
   EXPECT_GT(mixed_faces, 10);
 }
 
+// A side face of a z prism (a one-cell slab's, Mesh::z_prisms) moving in
+// the xy plane: the closed form of sweptPrismSide gives the 4 regions of the
+// general tensor rule to round-off, triangle by triangle (matched by volume,
+// then by height), on random faces that stretch, turn and twist (some
+// triangles gained, some given), thin and thick, far from the origin.
+TEST(SweptFace, PrismSideFacesSweepTheGeneralRegions) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int mixed = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    const double height = trial % 2 ? 0.01 : 1.0 + 0.5 * unit(rng);
+    const Vec3 offset{40.0 + unit(rng), -7.0 + unit(rng), 3.0 + unit(rng)};
+    const double amplitude = trial % 3 == 0 ? 0.6 : 0.15;
+    Vec3 lag[8], target[8];
+    const double square[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    for (int p = 0; p < 4; ++p) {
+      target[p] = offset + Vec3{square[p][0] + 0.1 * unit(rng), square[p][1] + 0.1 * unit(rng), 0};
+      lag[p] = target[p] + Vec3{amplitude * unit(rng), amplitude * unit(rng), 0};
+      target[p + 4] = target[p] + Vec3{0, 0, height};
+      lag[p + 4] = lag[p] + Vec3{0, 0, height};
+    }
+    for (int f = 0; f < 4; ++f) {
+      Vec3 q_lag[4], q_target[4];
+      hex::faceNodes(lag, f, q_lag);
+      hex::faceNodes(target, f, q_target);
+      SweptRegion general[4], prism[4];
+      swept::sweptFace(q_lag, q_target, general);
+      const int k = swept::prismSideEdge(f), next = (k + 1) & 3;
+      swept::sweptPrismSide(lag[k], lag[next], target[k], target[next], height, prism);
+      const auto byVolumeThenHeight = [](const SweptRegion& a, const SweptRegion& b) {
+        const double scale = 1e-9 * (std::fabs(a.volume) + std::fabs(b.volume));
+        if (std::fabs(a.volume - b.volume) > scale) return a.volume < b.volume;
+        return a.moment.z < b.moment.z;
+      };
+      std::sort(general, general + 4, byVolumeThenHeight);
+      std::sort(prism, prism + 4, byVolumeThenHeight);
+      int positive = 0;
+      for (const SweptRegion& t : general) positive += t.volume > 0.0;
+      mixed += positive > 0 && positive < 4;
+      // round-off scale: a region of a twisting face is the difference of
+      // terms of the size of the face (~1) times its height and displacement
+      const double size = height * amplitude;
+      for (int t = 0; t < 4; ++t) {
+        EXPECT_NEAR(prism[t].volume, general[t].volume, 1e-13 * size) << "face " << f;
+        EXPECT_LT(norm(prism[t].moment - general[t].moment), 1e-13 * size * norm(offset))
+            << "face " << f << " triangle " << t;
+      }
+    }
+  }
+  EXPECT_GT(mixed, 20);  // twisting faces, regions on both sides
+}
+
+// A whole slab of prisms, one cell thick between z symmetry planes, whose
+// nodes move in the xy plane: computeSweptFaces with the prism forms gives
+// every region of the general tensor rule to round-off.
+TEST(SweptFace, SlabOfPrismsSweepsTheGeneralRegions) {
+  BlockSpec block;
+  block.nx = 7;
+  block.ny = 6;
+  block.nz = 1;
+  block.lo = {-1.0, 0.5, 2.0};
+  block.hi = {1.4, 2.5, 2.1};
+  block.perturbation = 0.2;
+  SideBoundaries sides;
+  for (auto& side : sides) side.kind = BoundaryKind::Wall;
+  Mesh mesh = buildBlockMesh(block, sides);
+  ASSERT_TRUE(mesh.z_prisms);
+  const HostMesh host = copyToHost(mesh);
+  Vec3View::HostMirror x_lag("lagremap::test::x_lag_host", mesh.n_nodes);
+  const double h = 2.4 / 7;
+  for (Index n = 0; n < mesh.n_nodes; ++n) {  // a swirl in the plane; walls keep theirs
+    const Vec3 x = loadVec3(host.x_n, n);
+    const int i = n % (block.nx + 1), j = (n / (block.nx + 1)) % (block.ny + 1);
+    const bool x_wall = i == 0 || i == block.nx, y_wall = j == 0 || j == block.ny;
+    storeVec3(x_lag, n,
+              Vec3{x.x + (x_wall ? 0.0 : 0.3 * h * std::sin(3.0 * x.y)),
+                   x.y + (y_wall ? 0.0 : 0.3 * h * std::cos(2.0 * x.x)), x.z});
+  }
+  Vec3View x_lag_device("lagremap::test::x_lag", mesh.n_nodes);
+  Kokkos::deep_copy(x_lag_device, x_lag);
+  const auto regions = [&](bool prisms) {
+    mesh.z_prisms = prisms;
+    const SweptFaces swept = allocateSweptFaces(mesh);
+    computeSweptFaces(mesh, x_lag_device, mesh.x_n, swept);
+    return std::make_pair(Kokkos::create_mirror_view_and_copy(HostSpace(), swept.dvol_r),
+                          Kokkos::create_mirror_view_and_copy(HostSpace(), swept.moment_r));
+  };
+  const auto [dvol, moment] = regions(true);
+  const auto [dvol_general, moment_general] = regions(false);
+  double largest = 0.0;
+  for (std::size_t r = 0; r < dvol.extent(0); ++r) {
+    largest = std::max(largest, std::fabs(dvol_general(r)));
+  }
+  ASSERT_GT(largest, 1e-4);         // it swept
+  const double size = 0.1 * h * h;  // height x displacement x edge
+  for (std::size_t r = 0; r < dvol.extent(0); ++r) {
+    EXPECT_NEAR(dvol(r), dvol_general(r), 1e-13 * size) << "region " << r;
+    EXPECT_LT(norm(loadVec3(moment, r) - loadVec3(moment_general, r)), 1e-12 * size)
+        << "region " << r;
+  }
+}
+
 // The owner's 2 regions of an interior face are stored negated, bit for bit,
 // in the neighbour's slots of the same face, gained and given exchanged; the
 // neighbour's face is found here from the node ids, independently of the
