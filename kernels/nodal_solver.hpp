@@ -63,11 +63,14 @@ struct CornerStencil {
   KOKKOS_INLINE_FUNCTION explicit CornerStencil(double p_cell) : pb(p_cell) {}
 };
 
+// `z_prism`: the cell is a prism along z (Mesh::z_prisms), whose z faces lie
+// in the planes z_0 and z_0 + h: their mirror images are h away along -+e_z.
 template <class Neighbors, class FaceSide, class SideKind>
 KOKKOS_FORCEINLINE_FUNCTION void gatherStencil(const State& s, const Neighbors& neighbors,
                                                const FaceSide& face_side, const SideKind& side_kind,
-                                               Index c, const Vec3 x[8], const Vec3& v_cell,
-                                               double p_cell, const SymMat3& sigma_cell, bool solid,
+                                               bool z_prism, Index c, const Vec3 x[8],
+                                               const Vec3& v_cell, double p_cell,
+                                               const SymMat3& sigma_cell, bool solid,
                                                CornerStencil& st) {
   const Vec3 centroid = loadVec3(s.x_c, c);
   for (int i = 0; i < (solid ? 6 : 0); ++i) st.rhs_sigma[i] = Vec3{0, 0, 0};
@@ -83,7 +86,14 @@ KOKKOS_FORCEINLINE_FUNCTION void gatherStencil(const State& s, const Neighbors& 
       // a fluid neighbour's S_c is zero
       if (solid) dsigma = loadSym(s.S_c, nb) + identitySym(-s.p_c(nb)) - sigma_cell;
     } else if (face_side(c, f) >= 0 && side_kind(face_side(c, f)) == int(BoundaryKind::Wall)) {
-      mirrorAcrossFace(x, f, centroid, v_cell, dx, dv, normal);
+      if (z_prism && f >= 4) {
+        const double side = f == 4 ? -1.0 : 1.0;
+        normal = Vec3{0.0, 0.0, side};
+        dx = Vec3{0.0, 0.0, side * (x[4].z - x[0].z)};
+        dv = Vec3{0.0, 0.0, -2.0 * v_cell.z};
+      } else {
+        mirrorAcrossFace(x, f, centroid, v_cell, dx, dv, normal);
+      }
       if (solid) dsigma = mirrorJump(sigma_cell, normal);
     } else {
       st.dv_nb[f] = Vec3{0, 0, 0};
@@ -233,6 +243,7 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
   const auto face_side = mesh.cell_face_side;
   const auto side_kind = mesh.side_kind;
   const auto x_n = mesh.x_n;
+  const bool z_prisms = mesh.z_prisms;
   const auto s = state;
   const bool second_order = controls.order >= 2;
   const bool atomics = controls.gather == Gather::Atomics;
@@ -261,7 +272,7 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
           Vec3 x[8];
           for (int p = 0; p < 8; ++p) x[p] = loadVec3(x_n, cell_nodes(c, p));
           detail::CornerStencil stencil(p_cell);
-          detail::gatherStencil(s, neighbors, face_side, side_kind, c, x, v_cell, p_cell,
+          detail::gatherStencil(s, neighbors, face_side, side_kind, z_prisms, c, x, v_cell, p_cell,
                                 sigma_cell, solid, stencil);
           const SymMat3 inv = stencil.lsq.solver();
           const Vec3 centroid = loadVec3(s.x_c, c);
