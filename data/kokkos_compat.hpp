@@ -57,3 +57,15 @@ using Kokkos::Experimental::sqrt;
 #else
 #define LAGREMAP_LANES _Pragma("omp simd")
 #endif
+
+// Cells computed at once in the lanes of a vector register by the geometry
+// sweep (hex::cellGeometries, kCellLanes of them): 4 on CPU builds with GCC,
+// whose vector extensions give a pack of 4 doubles (one AVX2 register) the
+// arithmetic, comparisons and selections of a double, lane by lane; 1 in
+// device passes and with other compilers.
+#if defined(__GNUC__) && !defined(__clang__) && !defined(__CUDACC__) && !defined(__HIPCC__) && \
+    !defined(__CUDA_ARCH__) && !defined(__HIP_DEVICE_COMPILE__) && !defined(__INTEL_LLVM_COMPILER)
+#define LAGREMAP_CELL_PACKS 1
+#else
+#define LAGREMAP_CELL_PACKS 0
+#endif

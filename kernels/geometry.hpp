@@ -312,24 +312,35 @@ KOKKOS_INLINE_FUNCTION void cellShapeForRemap(const hex::CellShape& shape, const
   if (!finite_state) proposeStepLimit(best, -1.0, c, kBadState);
 }
 
-// The same, the geometry computed from the cell's nodes (`z_prism`:
-// Mesh::z_prisms).
-KOKKOS_INLINE_FUNCTION void cellGeometryAndThermo(const CellNodesView& cell_nodes,
-                                                  const Vec3View& x_n, bool z_prism, const State& s,
-                                                  const TimeStepControls& controls, Index c,
-                                                  StepLimit& best, bool end_of_stage = false,
-                                                  StageEnd what = StageEnd::Full,
-                                                  const StageRelaxation* relaxation = nullptr) {
-  Vec3 x[8];
-  gatherCellNodes(cell_nodes, x_n, c, x);
-  hex::CellGeometry geo;
-  if (what == StageEnd::Full) {
-    hex::cellGeometry<true>(x, z_prism, geo);
-    cellThermoOnGeometry(geo, s, controls, c, best, end_of_stage, relaxation);
-  } else {
-    hex::cellGeometry<false>(x, z_prism, geo);
-    cellShapeForRemap(geo.shape, s, c, best, relaxation);
+// The geometry of the cells first .. first + count - 1 of a mesh (count <=
+// hex::kCellLanes) at once (hex::cellGeometries, in the lanes of a vector on
+// CPU builds; a z prism's in closed form, Mesh::z_prisms); the spare lanes
+// of a mesh's last, shorter chunk repeat its first cell.
+template <bool kCornerSums>
+KOKKOS_INLINE_FUNCTION void chunkGeometry(const CellNodesView& cell_nodes, const Vec3View& x_n,
+                                          bool z_prisms, Index first, int count,
+                                          hex::CellGeometry geometry[hex::kCellLanes]) {
+  if (z_prisms) {
+    for (int i = 0; i < count; ++i) {
+      Vec3 x[8];
+      gatherCellNodes(cell_nodes, x_n, first + i, x);
+      hex::prismGeometry<kCornerSums>(x, geometry[i]);
+    }
+    return;
   }
+  Vec3 x[hex::kCellLanes][8];
+  for (int i = 0; i < hex::kCellLanes; ++i) {
+    gatherCellNodes(cell_nodes, x_n, first + (i < count ? i : 0), x[i]);
+  }
+  hex::cellGeometries<kCornerSums>(x, geometry);
+}
+
+// Chunks of hex::kCellLanes cells covering a mesh, and the cells of chunk k.
+inline Index cellChunks(const Mesh& mesh) {
+  return (mesh.n_cells + hex::kCellLanes - 1) / hex::kCellLanes;
+}
+KOKKOS_INLINE_FUNCTION int chunkCells(Index n_cells, Index first) {
+  return n_cells - first < hex::kCellLanes ? int(n_cells - first) : hex::kCellLanes;
 }
 
 // The geometry of every cell of a mesh that does not move: the remap's target,
@@ -342,15 +353,18 @@ inline CellGeometryView fixedMeshGeometry(const Mesh& mesh) {
   const auto cell_nodes = mesh.cell_nodes;
   const auto x_n = mesh.x_n;
   const bool z_prisms = mesh.z_prisms;
+  const Index n_cells = mesh.n_cells;
   CellGeometryView geometry(
       Kokkos::view_alloc(Kokkos::WithoutInitializing, "lagremap::remap::target_geometry"),
       mesh.n_cells);
   Kokkos::parallel_for(
-      "lagremap::remap::target_geometry", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
-      KOKKOS_LAMBDA(const Index c) {
-        Vec3 x[8];
-        gatherCellNodes(cell_nodes, x_n, c, x);
-        hex::cellGeometry(x, z_prisms, geometry(c));
+      "lagremap::remap::target_geometry", Kokkos::RangePolicy<ExecSpace>(0, cellChunks(mesh)),
+      KOKKOS_LAMBDA(const Index chunk) {
+        const Index first = chunk * hex::kCellLanes;
+        const int count = chunkCells(n_cells, first);
+        hex::CellGeometry chunk_geometry[hex::kCellLanes];
+        chunkGeometry<true>(cell_nodes, x_n, z_prisms, first, count, chunk_geometry);
+        for (int i = 0; i < count; ++i) geometry(first + i) = chunk_geometry[i];
       });
   return geometry;
 }
@@ -372,17 +386,42 @@ StepLimit stepLimitOverCells(const char* label, const Mesh& mesh, const CellUpda
   return limit;
 }
 
+// The same for cells whose geometry is computed from the mesh's nodes a
+// chunk at a time (chunkGeometry): `cell(c, geometry, best)`, kCornerSums as
+// for hex::cellGeometry.
+template <bool kCornerSums, class CellUpdate>
+StepLimit stepLimitOverCellGeometries(const char* label, const Mesh& mesh, const CellUpdate& cell) {
+  const auto owned = mesh.cell_owned;
+  const auto cell_nodes = mesh.cell_nodes;
+  const auto x_n = mesh.x_n;
+  const bool z_prisms = mesh.z_prisms;
+  const Index n_cells = mesh.n_cells;
+  StepLimit limit;
+  Kokkos::parallel_reduce(
+      label, Kokkos::RangePolicy<ExecSpace>(0, cellChunks(mesh)),
+      KOKKOS_LAMBDA(const Index chunk, StepLimit& best) {
+        const Index first = chunk * hex::kCellLanes;
+        const int count = chunkCells(n_cells, first);
+        hex::CellGeometry geometry[hex::kCellLanes];
+        chunkGeometry<kCornerSums>(cell_nodes, x_n, z_prisms, first, count, geometry);
+        for (int i = 0; i < count; ++i) {
+          StepLimit ghost{};
+          cell(first + i, geometry[i], owned(first + i) ? best : ghost);
+        }
+      },
+      StepLimitReducer(limit));
+  return limit;
+}
+
 // Returns the smallest time-step candidate (or a negative value and the
 // failure code for an invalid cell).
 inline StepLimit computeGeometry(const Mesh& mesh, const State& state,
                                  const TimeStepControls& controls) {
-  const auto cell_nodes = mesh.cell_nodes;
-  const auto x_n = mesh.x_n;
-  const bool z_prisms = mesh.z_prisms;
   const auto s = state;
-  return stepLimitOverCells(
-      "lagremap::geometry::cells", mesh, KOKKOS_LAMBDA(const Index c, StepLimit& best) {
-        cellGeometryAndThermo(cell_nodes, x_n, z_prisms, s, controls, c, best);
+  return stepLimitOverCellGeometries<true>(
+      "lagremap::geometry::cells", mesh,
+      KOKKOS_LAMBDA(const Index c, const hex::CellGeometry& geometry, StepLimit& best) {
+        cellThermoOnGeometry(geometry, s, controls, c, best, false);
       });
 }
 

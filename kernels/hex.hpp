@@ -106,77 +106,180 @@ struct CellGeometry {
   CellShape shape;
 };
 
-// kCornerSums = false: g.shape only (the corner arrays are left as they are),
-// with the same arithmetic, so the same bits, as the full sweep.
-template <bool kCornerSums = true>
-KOKKOS_INLINE_FUNCTION void cellGeometry(const Vec3 x[8], CellGeometry& g) {
-  const Vec3 origin = x[0];
+#if LAGREMAP_CELL_PACKS
+// kCellLanes cells in the lanes of one vector (GCC vector extensions).
+constexpr int kCellLanes = 4;
+using CellPack = double __attribute__((vector_size(kCellLanes * sizeof(double))));
+#else
+constexpr int kCellLanes = 1;
+#endif
+
+namespace detail {
+
+KOKKOS_FORCEINLINE_FUNCTION double laneSqrt(double v) {
+  return math::sqrt(v);
+}
+#if LAGREMAP_CELL_PACKS
+inline CellPack laneSqrt(CellPack v) {
+  CellPack root;
+  for (int i = 0; i < kCellLanes; ++i) root[i] = __builtin_sqrt(v[i]);
+  return root;
+}
+#endif
+
+// The scalar of the sweep below: a double (one cell), or on CPU builds a pack
+// of kCellLanes doubles (kCellLanes cells in the lanes of one vector
+// register). Both take the same arithmetic, comparisons and `?:` selections,
+// lane by lane, so a cell's numbers are the same bits either way.
+template <class Real>
+struct Point {
+  Real x, y, z;
+};
+template <class Real>
+KOKKOS_FORCEINLINE_FUNCTION Point<Real> operator+(const Point<Real>& a, const Point<Real>& b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+template <class Real>
+KOKKOS_FORCEINLINE_FUNCTION Point<Real> operator-(const Point<Real>& a, const Point<Real>& b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+template <class Real, class Scale>
+KOKKOS_FORCEINLINE_FUNCTION Point<Real> operator*(const Scale& s, const Point<Real>& a) {
+  return {s * a.x, s * a.y, s * a.z};
+}
+template <class Real>
+KOKKOS_FORCEINLINE_FUNCTION Real dot(const Point<Real>& a, const Point<Real>& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+template <class Real>
+KOKKOS_FORCEINLINE_FUNCTION Point<Real> cross(const Point<Real>& a, const Point<Real>& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+// What the sweep accumulates, in the scalar of the sweep.
+template <class Real>
+struct Sums {
+  Point<Real> corner[8];
+  Real moment[8][6];  // xx, yy, zz, xy, yz, xz
+  Real area[8];
+  Real volume, max_face_area;
+  Point<Real> centroid;
+};
+
+// The 24-triangle sweep of cellGeometry below, for a scalar Real.
+template <bool kCornerSums, class Real>
+KOKKOS_FORCEINLINE_FUNCTION void sweepTriangles(const Point<Real> x[8], Sums<Real>& g) {
+  const Point<Real> origin = x[0];
   // Constant factors are folded out of the 24-triangle loop: with the doubled
   // triangle area vectors T_k = (q_k+1 - q_k) x (face point - q_k) = 2 s_t n_t,
   // the tetrahedron (origin, q_k, q_k+1, face point) has volume q_k . T_k / 6
   // and centroid (q_k + q_k+1 + face point) / 4, so
-  //   volume = sum(q_k . T_k) / 6,  centroid = sum((q_k . T_k)(q_k + q_k+1 + fp)) / (4 sum(q_k .
-  //   T_k)).
-  double six_volume = 0.0, max_area2 = 0.0;
-  Vec3 weighted_sum{0.0, 0.0,
-                    0.0};  // sum (q_k . T_k)(q_k + q_k+1 + face point), relative to origin
-  // The corner sums accumulate in locals, written to g once at the end: g is
-  // written through a reference that, for the compiler, may alias x, so sums
-  // kept in it are stored and reloaded at every triangle (4% more
-  // instructions in this sweep).
-  Vec3 corner[8];
-  SymMat3 normal_moment[8];
-  double corner_face_area[8];
+  //   volume = sum(q_k . T_k) / 6,
+  //   centroid = sum((q_k . T_k)(q_k + q_k+1 + fp)) / (4 sum(q_k . T_k)).
+  Real six_volume = Real{}, max_area2 = Real{};
+  Point<Real> weighted_sum{Real{}, Real{}, Real{}};  // relative to origin
   if constexpr (kCornerSums) {
     for (int p = 0; p < 8; ++p) {
-      corner[p] = Vec3{0.0, 0.0, 0.0};
-      normal_moment[p] = SymMat3{0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
-      corner_face_area[p] = 0.0;
+      g.corner[p] = Point<Real>{Real{}, Real{}, Real{}};
+      for (int i = 0; i < 6; ++i) g.moment[p][i] = Real{};
+      g.area[p] = Real{};
     }
   }
   LAGREMAP_UNROLL
   for (int f = 0; f < 6; ++f) {
-    Vec3 q[4];
+    Point<Real> q[4];
     for (int k = 0; k < 4; ++k) q[k] = x[faceNode(f, k)] - origin;
-    const Vec3 face_point = 0.25 * (q[0] + q[1] + q[2] + q[3]);
-    Vec3 doubled[4];  // T_k = 2 s_t n_t
+    const Point<Real> face_point = 0.25 * (q[0] + q[1] + q[2] + q[3]);
+    Point<Real> doubled[4];  // T_k = 2 s_t n_t
     for (int k = 0; k < 4; ++k) doubled[k] = cross(q[(k + 1) & 3] - q[k], face_point - q[k]);
-    const Vec3 doubled_face = doubled[0] + doubled[1] + doubled[2] + doubled[3];
+    const Point<Real> doubled_face = doubled[0] + doubled[1] + doubled[2] + doubled[3];
     LAGREMAP_UNROLL
     for (int k = 0; k < 4; ++k) {
-      const double weight = dot(q[k], doubled[k]);
+      const Real weight = dot(q[k], doubled[k]);
       six_volume += weight;
-      weighted_sum += weight * (q[k] + q[(k + 1) & 3] + face_point);
+      weighted_sum = weighted_sum + weight * (q[k] + q[(k + 1) & 3] + face_point);
       if constexpr (!kCornerSums) continue;
       // s_pf n_pf = 1/3 (t_k-1 + t_k + 1/4 face) = 1/6 (T_k-1 + T_k + 1/4 sum T)
-      const Vec3 w = (1.0 / 6.0) * (doubled[(k + 3) & 3] + doubled[k] + 0.25 * doubled_face);
+      const Point<Real> w = (1.0 / 6.0) * (doubled[(k + 3) & 3] + doubled[k] + 0.25 * doubled_face);
       const int p = faceNode(f, k);
-      corner[p] += w;
-      const double area2 = dot(w, w);
-      if (area2 > 0.0) {  // a degenerate corner face has no normal and adds nothing
-        const double area = math::sqrt(area2);
-        const Vec3 n = (1.0 / area) * w;
-        SymMat3& m = normal_moment[p];
-        m.xx += n.x * w.x;
-        m.yy += n.y * w.y;
-        m.zz += n.z * w.z;
-        m.xy += n.x * w.y;
-        m.yz += n.y * w.z;
-        m.xz += n.x * w.z;
-        corner_face_area[p] += area;
-      }
+      g.corner[p] = g.corner[p] + w;
+      // a degenerate corner face has no normal and adds nothing (a sum that
+      // is never -0 is unchanged by adding +0)
+      const Real area2 = dot(w, w);
+      const auto has_area = area2 > Real{};
+      const Real area = laneSqrt(area2);
+      const Point<Real> n = (1.0 / area) * w;
+      Real* m = g.moment[p];
+      m[0] += has_area ? n.x * w.x : Real{};
+      m[1] += has_area ? n.y * w.y : Real{};
+      m[2] += has_area ? n.z * w.z : Real{};
+      m[3] += has_area ? n.x * w.y : Real{};
+      m[4] += has_area ? n.y * w.z : Real{};
+      m[5] += has_area ? n.x * w.z : Real{};
+      g.area[p] += has_area ? area : Real{};
     }
-    const double area2 = 0.25 * dot(doubled_face, doubled_face);
+    const Real area2 = 0.25 * dot(doubled_face, doubled_face);
     max_area2 = area2 > max_area2 ? area2 : max_area2;
   }
-  g.shape = {six_volume / 6.0, origin + (0.25 / six_volume) * weighted_sum, math::sqrt(max_area2)};
-  if constexpr (kCornerSums) {
-    for (int p = 0; p < 8; ++p) {
-      g.corner[p] = corner[p];
-      g.normal_moment[p] = normal_moment[p];
-      g.corner_face_area[p] = corner_face_area[p];
+  g.volume = six_volume / 6.0;
+  g.centroid = origin + (0.25 / six_volume) * weighted_sum;
+  g.max_face_area = laneSqrt(max_area2);
+}
+
+// Lane i of the sums into g (the corner arrays only with kCornerSums).
+template <bool kCornerSums, class Real, class Lane>
+KOKKOS_FORCEINLINE_FUNCTION void storeSums(const Sums<Real>& sums, const Lane& lane,
+                                           CellGeometry& g) {
+  g.shape = {lane(sums.volume),
+             Vec3{lane(sums.centroid.x), lane(sums.centroid.y), lane(sums.centroid.z)},
+             lane(sums.max_face_area)};
+  if constexpr (!kCornerSums) return;
+  for (int p = 0; p < 8; ++p) {
+    g.corner[p] = Vec3{lane(sums.corner[p].x), lane(sums.corner[p].y), lane(sums.corner[p].z)};
+    const Real* m = sums.moment[p];
+    g.normal_moment[p] =
+        SymMat3{lane(m[0]), lane(m[1]), lane(m[2]), lane(m[3]), lane(m[4]), lane(m[5])};
+    g.corner_face_area[p] = lane(sums.area[p]);
+  }
+}
+
+}  // namespace detail
+
+// kCornerSums = false: g.shape only (the corner arrays are left as they are),
+// with the same arithmetic, so the same bits, as the full sweep.
+template <bool kCornerSums = true>
+KOKKOS_INLINE_FUNCTION void cellGeometry(const Vec3 x[8], CellGeometry& g) {
+  detail::Point<double> points[8];
+  for (int p = 0; p < 8; ++p) points[p] = {x[p].x, x[p].y, x[p].z};
+  detail::Sums<double> sums;
+  detail::sweepTriangles<kCornerSums>(points, sums);
+  detail::storeSums<kCornerSums>(
+      sums, [](double v) { return v; }, g);
+}
+
+// The geometry of kCellLanes cells at once (the general sweep in the lanes of
+// a vector: the same bits as cellGeometry cell by cell); x[i]: the 8 nodes of
+// cell i.
+template <bool kCornerSums = true>
+KOKKOS_INLINE_FUNCTION void cellGeometries(const Vec3 x[kCellLanes][8],
+                                           CellGeometry g[kCellLanes]) {
+#if LAGREMAP_CELL_PACKS
+  detail::Point<CellPack> points[8];
+  for (int p = 0; p < 8; ++p) {
+    for (int i = 0; i < kCellLanes; ++i) {
+      points[p].x[i] = x[i][p].x;
+      points[p].y[i] = x[i][p].y;
+      points[p].z[i] = x[i][p].z;
     }
   }
+  detail::Sums<CellPack> sums;
+  detail::sweepTriangles<kCornerSums>(points, sums);
+  for (int i = 0; i < kCellLanes; ++i) {
+    detail::storeSums<kCornerSums>(
+        sums, [i](const CellPack& v) { return v[i]; }, g[i]);
+  }
+#else
+  for (int i = 0; i < kCellLanes; ++i) cellGeometry<kCornerSums>(x[i], g[i]);
+#endif
 }
 
 // A right prism along z (Mesh::z_prisms, a one-cell slab between symmetry

@@ -756,15 +756,22 @@ inline StepLimit updateCellsAndGeometry(const Mesh& mesh, const State& state, do
                                         StageEnd what = StageEnd::Full) {
   const auto cell_nodes = mesh.cell_nodes;
   const auto x_n = mesh.x_n;
-  const bool z_prisms = mesh.z_prisms;
   const auto s = state;
-  return stepLimitOverCells(
+  if (what == StageEnd::ForRemap) {
+    return stepLimitOverCellGeometries<false>(
+        "lagremap::cell_update::update_and_shape", mesh,
+        KOKKOS_LAMBDA(const Index c, const hex::CellGeometry& geometry, StepLimit& best) {
+          StageRelaxation relaxation;
+          updateCell(cell_nodes, x_n, s, dt_stage, c, relaxation);
+          cellShapeForRemap(geometry.shape, s, c, best, &relaxation);
+        });
+  }
+  return stepLimitOverCellGeometries<true>(
       "lagremap::cell_update::update_and_geometry", mesh,
-      KOKKOS_LAMBDA(const Index c, StepLimit& best) {
+      KOKKOS_LAMBDA(const Index c, const hex::CellGeometry& geometry, StepLimit& best) {
         StageRelaxation relaxation;
         updateCell(cell_nodes, x_n, s, dt_stage, c, relaxation);
-        cellGeometryAndThermo(cell_nodes, x_n, z_prisms, s, controls, c, best, true, what,
-                              &relaxation);
+        cellThermoOnGeometry(geometry, s, controls, c, best, true, &relaxation);
       });
 }
 

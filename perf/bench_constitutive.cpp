@@ -167,7 +167,7 @@ class PointwiseData {
         });
   }
 
-  // Mirrors the Neo-Hookean branches of updateCell and cellGeometryAndThermo.
+  // Mirrors the Neo-Hookean branches of updateCell and cellThermo.
   void neoHookean() const {
     const double mu = shearModulus(steel_);
     const auto F = F_;

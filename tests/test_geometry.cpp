@@ -3,6 +3,7 @@
 // volume and centroid are exact on known shapes.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "kernels/geometry.hpp"
@@ -124,6 +125,58 @@ TEST(Geometry, FusedCellGeometryMatchesTheReferenceFormulas) {
     EXPECT_EQ(shape_only.shape.centroid.y, geo.shape.centroid.y);
     EXPECT_EQ(shape_only.shape.centroid.z, geo.shape.centroid.z);
     EXPECT_EQ(shape_only.shape.max_face_area, geo.shape.max_face_area);
+  }
+}
+
+// The sweep of hex::kCellLanes cells at once (the lanes of a vector on CPU
+// builds) gives every cell the bits of its own sweep, a cell with a
+// degenerate face (its bottom collapsed to a point: corner faces of no area,
+// which add nothing) among them.
+TEST(Geometry, CellsInLanesGiveTheSameBitsAsOneByOne) {
+  std::mt19937 rng(3);
+  for (int trial = 0; trial < 20; ++trial) {
+    Vec3 x[hex::kCellLanes][8];
+    for (int i = 0; i < hex::kCellLanes; ++i) {
+      distortedHex(rng, 0.3, Vec3{10.0 * i, -3.0, 7.0}, x[i]);
+    }
+    if (trial % 2) {
+      for (int p = 1; p < 4; ++p) x[0][p] = x[0][0];
+    }
+    hex::CellGeometry lanes[hex::kCellLanes], shapes[hex::kCellLanes];
+    hex::cellGeometries(x, lanes);
+    hex::cellGeometries<false>(x, shapes);
+    for (int i = 0; i < hex::kCellLanes; ++i) {
+      hex::CellGeometry one;
+      hex::cellGeometry(x[i], one);
+      for (const auto* g : {&lanes[i], &shapes[i]}) {
+        EXPECT_EQ(g->shape.volume, one.shape.volume) << "cell " << i;
+        EXPECT_EQ(g->shape.centroid.x, one.shape.centroid.x);
+        EXPECT_EQ(g->shape.centroid.y, one.shape.centroid.y);
+        EXPECT_EQ(g->shape.centroid.z, one.shape.centroid.z);
+        EXPECT_EQ(g->shape.max_face_area, one.shape.max_face_area);
+      }
+      for (int p = 0; p < 8; ++p) {
+        EXPECT_EQ(lanes[i].corner[p].x, one.corner[p].x) << "cell " << i << " corner " << p;
+        EXPECT_EQ(lanes[i].corner[p].y, one.corner[p].y);
+        EXPECT_EQ(lanes[i].corner[p].z, one.corner[p].z);
+        EXPECT_EQ(lanes[i].corner_face_area[p], one.corner_face_area[p]);
+        const SymMat3& m = lanes[i].normal_moment[p];
+        const SymMat3& m_one = one.normal_moment[p];
+        EXPECT_EQ(m.xx, m_one.xx);
+        EXPECT_EQ(m.yy, m_one.yy);
+        EXPECT_EQ(m.zz, m_one.zz);
+        EXPECT_EQ(m.xy, m_one.xy);
+        EXPECT_EQ(m.yz, m_one.yz);
+        EXPECT_EQ(m.xz, m_one.xz);
+      }
+    }
+    if (trial % 2) {  // the collapsed face's corners: finite sums, no NaN of a 0 / 0 normal
+      EXPECT_GT(lanes[0].shape.volume, 0.0);
+      for (int p = 0; p < 4; ++p) {
+        EXPECT_TRUE(std::isfinite(lanes[0].corner_face_area[p]));
+        EXPECT_TRUE(std::isfinite(ddot(lanes[0].normal_moment[p], lanes[0].normal_moment[p])));
+      }
+    }
   }
 }
 
