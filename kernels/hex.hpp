@@ -232,13 +232,14 @@ KOKKOS_FORCEINLINE_FUNCTION void storeSums(const Sums<Real>& sums, const Lane& l
   g.shape = {lane(sums.volume),
              Vec3{lane(sums.centroid.x), lane(sums.centroid.y), lane(sums.centroid.z)},
              lane(sums.max_face_area)};
-  if constexpr (!kCornerSums) return;
-  for (int p = 0; p < 8; ++p) {
-    g.corner[p] = Vec3{lane(sums.corner[p].x), lane(sums.corner[p].y), lane(sums.corner[p].z)};
-    const Real* m = sums.moment[p];
-    g.normal_moment[p] =
-        SymMat3{lane(m[0]), lane(m[1]), lane(m[2]), lane(m[3]), lane(m[4]), lane(m[5])};
-    g.corner_face_area[p] = lane(sums.area[p]);
+  if constexpr (kCornerSums) {
+    for (int p = 0; p < 8; ++p) {
+      g.corner[p] = Vec3{lane(sums.corner[p].x), lane(sums.corner[p].y), lane(sums.corner[p].z)};
+      const Real* m = sums.moment[p];
+      g.normal_moment[p] =
+          SymMat3{lane(m[0]), lane(m[1]), lane(m[2]), lane(m[3]), lane(m[4]), lane(m[5])};
+      g.corner_face_area[p] = lane(sums.area[p]);
+    }
   }
 }
 
@@ -280,6 +281,47 @@ KOKKOS_INLINE_FUNCTION void cellGeometries(const Vec3 x[kCellLanes][8],
 #else
   for (int i = 0; i < kCellLanes; ++i) cellGeometry<kCornerSums>(x[i], g[i]);
 #endif
+}
+
+// The corner sums of prismGeometry: from the height, the bottom edges e_k and
+// their squared lengths, the quad's doubled triangle areas T_k and their sum.
+KOKKOS_INLINE_FUNCTION void prismCornerSums(double height, const double edge_x[4],
+                                            const double edge_y[4], const double edge2[4],
+                                            const double doubled[4], double twice_area,
+                                            CellGeometry& g) {
+  // a side face's quarter: vector, area and normal moment S (x) S / (4 |S|)
+  // (in the xy block; a degenerate face adds no moment or area)
+  double quarter_x[4], quarter_y[4], quarter_area[4], moment_xx[4], moment_yy[4], moment_xy[4];
+  for (int k = 0; k < 4; ++k) {
+    quarter_x[k] = 0.25 * height * edge_y[k];
+    quarter_y[k] = -0.25 * height * edge_x[k];
+    const double length = math::sqrt(edge2[k]);
+    const double scale = length > 0.0 && height > 0.0 ? 0.25 * height / length : 0.0;
+    quarter_area[k] = 0.25 * height * length;
+    moment_xx[k] = scale * (edge_y[k] * edge_y[k]);
+    moment_yy[k] = scale * (edge_x[k] * edge_x[k]);
+    moment_xy[k] = -scale * (edge_x[k] * edge_y[k]);
+  }
+  for (int p = 0; p < 4; ++p) {
+    const int before = (p + 3) & 3;  // the side faces of node p: edges p - 1 and p
+    const double w = (1.0 / 6.0) * (doubled[before] + doubled[p] + 0.25 * twice_area);
+    const double w_size = math::fabs(w);
+    const double in_plane_x = quarter_x[before] + quarter_x[p];
+    const double in_plane_y = quarter_y[before] + quarter_y[p];
+    const SymMat3 moment{moment_xx[before] + moment_xx[p],
+                         moment_yy[before] + moment_yy[p],
+                         w_size,
+                         moment_xy[before] + moment_xy[p],
+                         0.0,
+                         0.0};
+    const double area = quarter_area[before] + quarter_area[p] + w_size;
+    g.corner[p] = Vec3{in_plane_x, in_plane_y, -w};
+    g.corner[p + 4] = Vec3{in_plane_x, in_plane_y, w};
+    g.normal_moment[p] = moment;
+    g.normal_moment[p + 4] = moment;
+    g.corner_face_area[p] = area;
+    g.corner_face_area[p + 4] = area;
+  }
 }
 
 // A right prism along z (Mesh::z_prisms, a one-cell slab between symmetry
@@ -332,40 +374,7 @@ KOKKOS_INLINE_FUNCTION void prismGeometry(const Vec3 x[8], CellGeometry& g) {
       quad_area * height,
       origin + Vec3{third_over_area * weighted_x, third_over_area * weighted_y, 0.5 * height},
       math::sqrt(max_area2)};
-  if constexpr (!kCornerSums) return;
-  // a side face's quarter: vector, area and normal moment S (x) S / (4 |S|)
-  // (in the xy block; a degenerate face adds no moment or area)
-  double quarter_x[4], quarter_y[4], quarter_area[4], moment_xx[4], moment_yy[4], moment_xy[4];
-  for (int k = 0; k < 4; ++k) {
-    quarter_x[k] = 0.25 * height * edge_y[k];
-    quarter_y[k] = -0.25 * height * edge_x[k];
-    const double length = math::sqrt(edge2[k]);
-    const double scale = length > 0.0 && height > 0.0 ? 0.25 * height / length : 0.0;
-    quarter_area[k] = 0.25 * height * length;
-    moment_xx[k] = scale * (edge_y[k] * edge_y[k]);
-    moment_yy[k] = scale * (edge_x[k] * edge_x[k]);
-    moment_xy[k] = -scale * (edge_x[k] * edge_y[k]);
-  }
-  for (int p = 0; p < 4; ++p) {
-    const int before = (p + 3) & 3;  // the side faces of node p: edges p - 1 and p
-    const double w = (1.0 / 6.0) * (doubled[before] + doubled[p] + 0.25 * twice_area);
-    const double w_size = math::fabs(w);
-    const double in_plane_x = quarter_x[before] + quarter_x[p];
-    const double in_plane_y = quarter_y[before] + quarter_y[p];
-    const SymMat3 moment{moment_xx[before] + moment_xx[p],
-                         moment_yy[before] + moment_yy[p],
-                         w_size,
-                         moment_xy[before] + moment_xy[p],
-                         0.0,
-                         0.0};
-    const double area = quarter_area[before] + quarter_area[p] + w_size;
-    g.corner[p] = Vec3{in_plane_x, in_plane_y, -w};
-    g.corner[p + 4] = Vec3{in_plane_x, in_plane_y, w};
-    g.normal_moment[p] = moment;
-    g.normal_moment[p + 4] = moment;
-    g.corner_face_area[p] = area;
-    g.corner_face_area[p + 4] = area;
-  }
+  if constexpr (kCornerSums) prismCornerSums(height, edge_x, edge_y, edge2, doubled, twice_area, g);
 }
 
 // The geometry of a cell, in closed form when it is a z prism.
