@@ -272,13 +272,7 @@ TEST(Geometry, FrustumVolumeAndCentroidAreExact) {
 // box, and at every interior node the corner vectors of its cells cancel
 // (moving an interior node does not change the total volume).
 TEST(Geometry, MeshKernelsConserveVolumeAndCancelAtInteriorNodes) {
-  BlockSpec block;
-  block.nx = 7;
-  block.ny = 5;
-  block.nz = 4;
-  block.lo = {-1.0, 0.0, 2.0};
-  block.hi = {2.0, 1.0, 3.5};
-  block.perturbation = 0.3;
+  const BlockSpec block = testing::perturbedBlock(7, 5, 4, {-1.0, 0.0, 2.0}, {2.0, 1.0, 3.5}, 0.3);
   auto [setup, state] =
       testing::uniformBlock(block, SideBoundaries{}, MaterialParams{}, 1.0, 1.0, Vec3{0, 0, 0});
   const Index n_cells = setup.mesh.n_cells;

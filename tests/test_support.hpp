@@ -65,6 +65,27 @@ inline std::string scratchDir(const std::string& name) {
   return dir.string();
 }
 
+// A block of nx x ny x nz cells over [lo, hi] whose interior nodes are moved
+// at random by up to `perturbation` of the local cell size.
+inline BlockSpec perturbedBlock(int nx, int ny, int nz, const Vec3& lo, const Vec3& hi,
+                                double perturbation) {
+  BlockSpec block;
+  block.nx = nx;
+  block.ny = ny;
+  block.nz = nz;
+  block.lo = lo;
+  block.hi = hi;
+  block.perturbation = perturbation;
+  return block;
+}
+
+// Every side of the box a wall (symmetry).
+inline SideBoundaries allWalls() {
+  SideBoundaries sides;
+  for (auto& side : sides) side.kind = BoundaryKind::Wall;
+  return sides;
+}
+
 // A block of one material in a uniform state, uploaded into a fresh State.
 struct UniformBlock {
   ProblemSetup setup;

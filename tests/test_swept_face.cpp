@@ -36,17 +36,10 @@ struct SweptMeshCase {
 
 SweptMeshCase distortedCase(bool free_boundary, unsigned seed) {
   SweptMeshCase sc;
+  sc.block = testing::perturbedBlock(6, 5, 4, {-1.0, 0.5, 2.0}, {1.4, 2.5, 3.6}, 0.15);
   BlockSpec& block = sc.block;
-  block.nx = 6;
-  block.ny = 5;
-  block.nz = 4;
-  block.lo = {-1.0, 0.5, 2.0};
-  block.hi = {1.4, 2.5, 3.6};
-  block.perturbation = 0.15;
   block.seed = seed;
-  SideBoundaries sides;
-  for (auto& side : sides) side.kind = BoundaryKind::Wall;
-  sc.mesh = buildBlockMesh(block, sides);
+  sc.mesh = buildBlockMesh(block, testing::allWalls());
 
   const HostMesh host = copyToHost(sc.mesh);
   // A separate host View: on a host backend the mirror of x_n is x_n itself.
@@ -276,16 +269,8 @@ TEST(SweptFace, PrismSideFacesSweepTheGeneralRegions) {
 // nodes move in the xy plane: computeSweptFaces with the prism forms gives
 // every region of the general tensor rule to round-off.
 TEST(SweptFace, SlabOfPrismsSweepsTheGeneralRegions) {
-  BlockSpec block;
-  block.nx = 7;
-  block.ny = 6;
-  block.nz = 1;
-  block.lo = {-1.0, 0.5, 2.0};
-  block.hi = {1.4, 2.5, 2.1};
-  block.perturbation = 0.2;
-  SideBoundaries sides;
-  for (auto& side : sides) side.kind = BoundaryKind::Wall;
-  Mesh mesh = buildBlockMesh(block, sides);
+  const BlockSpec block = testing::perturbedBlock(7, 6, 1, {-1.0, 0.5, 2.0}, {1.4, 2.5, 2.1}, 0.2);
+  Mesh mesh = buildBlockMesh(block, testing::allWalls());
   ASSERT_TRUE(mesh.z_prisms);
   const HostMesh host = copyToHost(mesh);
   Vec3View::HostMirror x_lag("lagremap::test::x_lag_host", mesh.n_nodes);
