@@ -377,16 +377,6 @@ KOKKOS_INLINE_FUNCTION void prismGeometry(const Vec3 x[8], CellGeometry& g) {
   if constexpr (kCornerSums) prismCornerSums(height, edge_x, edge_y, edge2, doubled, twice_area, g);
 }
 
-// The geometry of a cell, in closed form when it is a z prism.
-template <bool kCornerSums = true>
-KOKKOS_INLINE_FUNCTION void cellGeometry(const Vec3 x[8], bool z_prism, CellGeometry& g) {
-  if (z_prism) {
-    prismGeometry<kCornerSums>(x, g);
-  } else {
-    cellGeometry<kCornerSums>(x, g);
-  }
-}
-
 // The 8 corner vectors A_cp = sum_f s_pf n_pf = d v_c / d x_p (GCL, DESIGN §2).
 KOKKOS_INLINE_FUNCTION void cornerVectors(const Vec3 x[8], Vec3 corner[8]) {
   for (int p = 0; p < 8; ++p) corner[p] = Vec3{0.0, 0.0, 0.0};

@@ -178,6 +178,23 @@ std::vector<double> geometryFields(const State& state) {
   return all;
 }
 
+// The paper's slabs (one cell thick between z symmetry planes, in both
+// modes: the shell's polar mesh too) take the prism geometry
+// (Mesh::z_prisms); the beam, a 3D block, does not.
+TEST(Remap, PaperSlabsArePrismMeshesAndTheBeamIsNot) {
+  const std::pair<const char*, const char*> slabs[] = {{"taylor", "remap"},
+                                                       {"shell", "remap"},
+                                                       {"ball", "remap"},
+                                                       {"taylor", "lagrange"},
+                                                       {"shell", "lagrange"}};
+  for (const auto& [problem, mode] : slabs) {
+    const RunOptions options = testing::problemOptions(problem, {}, 0.25, mode);
+    EXPECT_TRUE(findProblem(problem).setup(options.config).mesh.z_prisms) << problem << " " << mode;
+  }
+  const RunOptions beam = testing::problemOptions("beam", {}, 0.25, "remap");
+  EXPECT_FALSE(findProblem("beam").setup(beam.config).mesh.z_prisms);
+}
+
 // After the remap the nodes are back on the initial mesh, whose geometry the
 // remap keeps (fixedMeshGeometry): the state's geometry and thermodynamics
 // from it are those of the full computation, bit for bit (the taylor bar in
