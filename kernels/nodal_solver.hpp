@@ -488,6 +488,21 @@ inline void nodalSolve(const Mesh& mesh, const State& state, const CornerControl
       });
 }
 
+// A decomposed run's ghost nodes after the node exchange has given them their
+// owners' velocities: the positions x_n0 + dt_stage V_n, the same sum their
+// owners computed (nodalSolve), so the same bits.
+inline void moveGhostNodes(const Mesh& mesh, const State& state, double dt_stage) {
+  const auto owned = mesh.node_owned;
+  const auto x_n = mesh.x_n;
+  const auto s = state;
+  Kokkos::parallel_for(
+      "lagremap::nodal_solve::ghost_positions", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_nodes),
+      KOKKOS_LAMBDA(const Index n) {
+        if (owned(n)) return;
+        storeVec3(x_n, n, loadVec3(s.x_n0, n) + dt_stage * loadVec3(s.v_n, n));
+      });
+}
+
 // Velocity gradient of the stage, L = (1/v) sum_p V_p (x) A_cp (DESIGN §4).
 KOKKOS_INLINE_FUNCTION Mat3 velocityGradient(const CellNodesView& cell_nodes, const State& s,
                                              Index c) {

@@ -69,6 +69,9 @@ void printReport(const RunOptions& options, const RunResult& result) {
   }
   std::printf("FOM: %.4g cell-steps/s (%s)\n", result.cell_steps_per_second,
               executionSpaceText().c_str());
+  const RankCosts& costs = result.costs;
+  std::printf("set-up %.3g s, peak memory per rank %.1f MB (largest), halo %.3g MB per step\n",
+              costs.setup.total(), costs.peak_bytes.max / 1e6, costs.halo_bytes_per_step / 1e6);
 }
 
 // What the command line says, before it is resolved against a problem.

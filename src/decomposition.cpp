@@ -60,13 +60,14 @@ CellBox ownedBox(int nx, int ny, int nz, const std::array<int, 3>& grid, int ran
 // --- halo exchange
 
 void Halo::exchangeCells(const std::vector<FieldRef>& fields) const {
-  exchange(cell_links, fields);
+  exchange(cell_links, fields, cell_traffic_);
 }
 void Halo::exchangeNodes(const std::vector<FieldRef>& fields) const {
-  exchange(node_links, fields);
+  exchange(node_links, fields, node_traffic_);
 }
 
-void Halo::exchange(const std::vector<Link>& links, const std::vector<FieldRef>& fields) const {
+void Halo::exchange(const std::vector<Link>& links, const std::vector<FieldRef>& fields,
+                    Traffic& traffic) const {
   if (links.empty()) return;
   int row = 0;  // doubles per entity
   for (const FieldRef& field : fields) row += field.components;
@@ -75,6 +76,8 @@ void Halo::exchange(const std::vector<Link>& links, const std::vector<FieldRef>&
     send_size += link.send.extent(0) * std::size_t(row);
     recv_size += link.recv.extent(0) * std::size_t(row);
   }
+  traffic.messages += long(links.size());
+  traffic.bytes += double(send_size * sizeof(double));
   // Buffers grow to the largest message set and stay (no allocation per step).
   if (send_buffer_.extent(0) < send_size) {
     send_buffer_ = RealView(Kokkos::view_alloc(Kokkos::WithoutInitializing, "lagremap::halo::send"),

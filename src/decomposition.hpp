@@ -47,8 +47,18 @@ class Halo {
   };
   std::vector<Link> cell_links, node_links;
 
+  // What this rank has sent so far, in cell and in node exchanges.
+  struct Traffic {
+    long messages = 0;
+    double bytes = 0.0;
+  };
+  const Traffic& cellTraffic() const { return cell_traffic_; }
+  const Traffic& nodeTraffic() const { return node_traffic_; }
+
  private:
-  void exchange(const std::vector<Link>& links, const std::vector<FieldRef>& fields) const;
+  void exchange(const std::vector<Link>& links, const std::vector<FieldRef>& fields,
+                Traffic& traffic) const;
+  mutable Traffic cell_traffic_, node_traffic_;
   mutable RealView send_buffer_, recv_buffer_;
   mutable RealView::HostMirror send_host_, recv_host_;  // the same Views on host backends
 };

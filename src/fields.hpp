@@ -78,4 +78,22 @@ std::vector<FieldRef> cellStateFields(const State& state);
 // them through computeGeometry (dv/dt is kept for the time-step candidate).
 std::vector<FieldRef> evolvedCellFields(const State& state);
 
+// The halo's cell exchanges (DESIGN §6; docs/method.md §6.2): each moves the
+// fields that the kernels read in ghost cells before the next exchange and
+// cannot compute there themselves. A ghost cell's geometry (x_c, vol_c, A_cp,
+// and the stage-end volume shares) follows from its nodes, whose positions
+// its owners send (the node exchange), so it is computed, not sent; its
+// state is right only where its whole stencil is local (the first ghost
+// layer), so whatever a stage or the remap changes is sent.
+// - after the remap: evolvedCellFields (the next step's geometry and closure
+//   derive the rest on every cell, as a restart does);
+// - at the end of a stage with the closure (the predictor, a lagrange-mode
+//   corrector): what the stage changes, the closure's fields included, which
+//   the next stage's corner terms and mixed-cell rules read (mass, material
+//   masses and interface normals change only in the remap);
+// - at the end of a remap-mode corrector: what the remap reads that the
+//   stage changed (velocity, volume fractions, material energies, tensors).
+std::vector<FieldRef> stageEndCellFields(const State& state);
+std::vector<FieldRef> stageEndCellFieldsForRemap(const State& state);
+
 }  // namespace lagremap

@@ -76,20 +76,24 @@ StepLimit LagrangeStep::stage(double dt_stage, bool last_stage) {
     nodalSolve(mesh_, state_, corner_controls, dt_stage);
     std::swap(mesh_.x_n, state_.x_n_next);  // the mesh moves: no copy, the Views trade places
   }
-  if (halo_) {  // ghost nodes: their owners' velocities and positions (DESIGN §6)
+  if (halo_) {
+    // ghost nodes: their owners' velocities (DESIGN §6), and the positions
+    // these give, computed as their owners do (the external forces are read
+    // on owned nodes only: the boundary work)
     auto scope = timers_.scope(Phase::Halo);
-    halo_->exchangeNodes({fieldRef("x_n", mesh_.x_n), fieldRef("v_n", state_.v_n),
-                          fieldRef("f_ext_n", state_.f_ext_n)});
+    halo_->exchangeNodes({fieldRef("v_n", state_.v_n)});
+    moveGhostNodes(mesh_, state_, dt_stage);
   }
   StepLimit limit;
+  const StageEnd what = last_stage && remap_follows_ ? StageEnd::ForRemap : StageEnd::Full;
   {
     auto scope = timers_.scope(Phase::CellUpdate);
-    const StageEnd what = last_stage && remap_follows_ ? StageEnd::ForRemap : StageEnd::Full;
     limit = updateCellsAndGeometry(mesh_, state_, dt_stage, numerics_.step, what);
   }
-  if (halo_) {
+  if (halo_) {  // what the next stage, or the remap, reads in ghost cells (src/fields.hpp)
     auto scope = timers_.scope(Phase::Halo);
-    halo_->exchangeCells(cellStateFields(state_));
+    halo_->exchangeCells(what == StageEnd::ForRemap ? stageEndCellFieldsForRemap(state_)
+                                                    : stageEndCellFields(state_));
   }
   return overAllRanks(limit);
 }

@@ -5,6 +5,7 @@
 namespace lagremap::parallel {
 namespace {
 int serial_scopes = 0;  // SerialScope objects alive
+long reductions = 0;    // collective reductions across more than one rank
 
 bool active() {
   if (serial_scopes > 0) return false;
@@ -34,8 +35,14 @@ int size() {
   return n;
 }
 
+long reductionCount() {
+  return reductions;
+}
+
 void sum(double* values, int n) {
-  if (size() > 1) MPI_Allreduce(MPI_IN_PLACE, values, n, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  if (size() == 1) return;
+  ++reductions;
+  MPI_Allreduce(MPI_IN_PLACE, values, n, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
 }
 
 double sum(double value) {
@@ -44,17 +51,22 @@ double sum(double value) {
 }
 
 double min(double value) {
-  if (size() > 1) MPI_Allreduce(MPI_IN_PLACE, &value, 1, MPI_DOUBLE, MPI_MIN, MPI_COMM_WORLD);
+  if (size() == 1) return value;
+  ++reductions;
+  MPI_Allreduce(MPI_IN_PLACE, &value, 1, MPI_DOUBLE, MPI_MIN, MPI_COMM_WORLD);
   return value;
 }
 
 double max(double value) {
-  if (size() > 1) MPI_Allreduce(MPI_IN_PLACE, &value, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  if (size() == 1) return value;
+  ++reductions;
+  MPI_Allreduce(MPI_IN_PLACE, &value, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
   return value;
 }
 
 StepLimit minLoc(StepLimit limit) {
   if (size() == 1) return limit;
+  ++reductions;
   struct {
     double val;
     int loc;
@@ -66,8 +78,10 @@ StepLimit minLoc(StepLimit limit) {
 }
 
 bool any(bool condition) {
+  if (size() == 1) return condition;
+  ++reductions;
   int flag = condition ? 1 : 0;
-  if (size() > 1) MPI_Allreduce(MPI_IN_PLACE, &flag, 1, MPI_INT, MPI_LOR, MPI_COMM_WORLD);
+  MPI_Allreduce(MPI_IN_PLACE, &flag, 1, MPI_INT, MPI_LOR, MPI_COMM_WORLD);
   return flag != 0;
 }
 
@@ -93,6 +107,10 @@ std::string firstMessage(const std::string& message) {
   out.resize(std::size_t(length));
   MPI_Bcast(out.data(), length, MPI_CHAR, first, MPI_COMM_WORLD);
   return out;
+}
+
+Spread spread(double value) {
+  return {min(value), sum(value) / size(), max(value)};
 }
 
 void barrier() {

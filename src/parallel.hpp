@@ -22,6 +22,10 @@ void sum(double* values, int n);
 double sum(double value);
 double min(double value);
 double max(double value);
+// Collective reductions (sum, min, max, minLoc, any) this process has taken
+// part in on more than one rank: the latency-bound part of a step
+// (summary.json, the scaling model of docs/performance.md).
+long reductionCount();
 // Smallest time-step candidate over the ranks; ties go to the lowest location.
 // `loc` must already be global (cell global id * kLimitCodes + code).
 StepLimit minLoc(StepLimit limit);
@@ -33,6 +37,12 @@ std::string broadcast(const std::string& text);
 // ("" if none): an error found by one rank becomes every rank's error.
 std::string firstMessage(const std::string& message);
 void barrier();
+
+// The smallest, mean and largest of a per-rank value over the ranks.
+struct Spread {
+  double min = 0.0, mean = 0.0, max = 0.0;
+};
+Spread spread(double value);
 
 // While alive, this process runs as a single rank (size() == 1, no MPI
 // calls): the MPI tests compute single-rank references next to their

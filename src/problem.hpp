@@ -81,6 +81,9 @@ struct ProblemSetup {
   Mesh mesh;
   std::vector<MaterialParams> materials;
   InitialCells cells;
+  // Wall time fillMaterialRegions took (the set-up's "sample materials"
+  // phase, summary.json); the rest of Problem::setup is "generate".
+  double sample_seconds = 0.0;
 };
 
 // Host copies of the fields at the end of a run, for problem checks and CSVs.

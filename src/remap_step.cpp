@@ -60,9 +60,9 @@ RemapBoundaryFlux RemapStep::apply() {
     crossed = remapUpdate(mesh_, state_, layout_, controls_, fields_, swept_);
     Kokkos::deep_copy(mesh_.x_n, x_target_);
   }
-  if (halo_) {  // ghost cells: their owners' remapped state (DESIGN §6)
+  if (halo_) {  // ghost cells: their owners' remapped state (DESIGN §6, src/fields.hpp)
     auto scope = timers_.scope(Phase::Halo);
-    halo_->exchangeCells(cellStateFields(state_));
+    halo_->exchangeCells(evolvedCellFields(state_));
   }
   parallel::sum(crossed.v, 5);
   return crossed;

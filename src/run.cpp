@@ -39,6 +39,38 @@ void checkRunOptions(const RunOptions& options) {
   if (options.output_every < 0) throw ConfigError("--output-every must be >= 0");
 }
 
+}  // namespace
+
+RankCosts costsOverRanks(const Simulation& simulation, long steps_run) {
+  RankCosts costs;
+  const Mesh& mesh = simulation.mesh();
+  const double owned_cells = double(parallel::size() > 1 ? mesh.n_owned_cells : mesh.n_cells);
+  const double peak = double(peakResidentBytes());
+  costs.peak_bytes = parallel::spread(peak);
+  costs.setup_peak_bytes = parallel::spread(double(simulation.setupPeakBytes()));
+  costs.owned_cells = parallel::spread(owned_cells);
+  costs.peak_bytes_per_owned_cell = parallel::spread(owned_cells > 0 ? peak / owned_cells : 0.0);
+  const SetupSeconds& setup = simulation.setupSeconds();
+  costs.setup = {parallel::max(setup.generate), parallel::max(setup.sample_materials),
+                 parallel::max(setup.decompose), parallel::max(setup.initialize)};
+  Halo::Traffic cells, nodes;
+  if (simulation.halo()) {
+    cells = simulation.halo()->cellTraffic();
+    nodes = simulation.halo()->nodeTraffic();
+  }
+  const double per_step = steps_run > 0 ? 1.0 / double(steps_run) : 0.0;
+  const double rank_bytes = cells.bytes + nodes.bytes;
+  costs.halo_bytes_per_step = parallel::sum(rank_bytes) * per_step;
+  costs.halo_messages_per_step = parallel::sum(double(cells.messages + nodes.messages)) * per_step;
+  costs.halo_cell_bytes_per_step = parallel::sum(cells.bytes) * per_step;
+  costs.halo_node_bytes_per_step = parallel::sum(nodes.bytes) * per_step;
+  costs.halo_bytes_per_step_max_rank = parallel::max(rank_bytes) * per_step;
+  costs.reductions_per_step = double(simulation.loopReductions()) * per_step;
+  return costs;
+}
+
+namespace {
+
 // What the loop did: counters, speed, drifts and the final (or last good) fields.
 RunResult resultOf(const Simulation& simulation) {
   RunResult result;
@@ -54,6 +86,7 @@ RunResult resultOf(const Simulation& simulation) {
   result.drift_mass = simulation.driftMass();
   result.drift_momentum = simulation.driftMomentum();
   result.drift_energy = simulation.driftEnergy();
+  result.costs = costsOverRanks(simulation, steps_run);
   result.fields =
       copyFields(simulation.mesh(), simulation.globalMesh(), simulation.state(), simulation.time());
   result.fields.probe = simulation.loopState().probe;

@@ -8,6 +8,7 @@
 
 #include "input/config.hpp"
 #include "problem.hpp"
+#include "resources.hpp"
 #include "setup.hpp"
 
 namespace lagremap {
@@ -37,8 +38,14 @@ struct RunResult {
   double drift_mass = 0.0, drift_momentum = 0.0, drift_energy = 0.0;
   double max_transverse_velocity = 0.0;
   FinalFields fields;  // host copies of the final (or last good) state
+  RankCosts costs;     // memory, set-up time and halo traffic over the ranks
   bool checksPass() const;
 };
+
+class Simulation;
+// Memory, set-up time and halo traffic of every rank over the ranks, after
+// `steps_run` steps of `simulation` (collective).
+RankCosts costsOverRanks(const Simulation& simulation, long steps_run);
 
 // Runs a problem. Bad configuration throws ConfigError (exit code 2); a failure
 // mid-way is returned in RunResult::failed after the last good state is written.

@@ -40,9 +40,15 @@ Simulation::Simulation(const RunOptions& options, const Problem& problem)
       t_end_(options.config.real("t_end")) {
   const Config& config = options.config;
   checkMemoryFits(config);
+  Kokkos::Timer phase;
   setup_ = setUpProblem(problem, config, options.problem);
+  setup_seconds_.generate = phase.seconds() - setup_.sample_seconds;
+  setup_seconds_.sample_materials = setup_.sample_seconds;
+  phase.reset();
   // decomposition (DESIGN §6): this rank's block of cells and its ghosts
   if (parallel::size() > 1) halo_ = keepSubdomain(setup_, global_mesh_, options.problem);
+  setup_seconds_.decompose = phase.seconds();
+  phase.reset();
   Mesh& mesh = setup_.mesh;
   state_ = allocateState(mesh, numerics_.gather == Gather::Atomics);
   collectively([&] { initializeState(setup_, state_); });
@@ -88,11 +94,15 @@ Simulation::Simulation(const RunOptions& options, const Problem& problem)
     if (t_out > loop_.time) pending_outputs_.push_back(t_out);
   }
   std::sort(pending_outputs_.begin(), pending_outputs_.end());
+  Kokkos::fence();
+  setup_seconds_.initialize = phase.seconds();
+  setup_peak_bytes_ = peakResidentBytes();
 }
 
 void Simulation::run() {
   for (LoopObserver* observer : observers_) observer->start(*this);
   const auto wall_start = std::chrono::steady_clock::now();
+  const long reductions_start = parallel::reductionCount();
   while (loop_.time < t_end_) {
     const TimeStepChoice choice = chooseTimeStep();
     failure_ = stopReason(choice);
@@ -108,6 +118,7 @@ void Simulation::run() {
   }
   wall_seconds_ =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  loop_reductions_ = parallel::reductionCount() - reductions_start;
   // in the reverse order (a checkpoint of a failed run lists the snapshots
   // before the final one, which a restart then rewrites)
   for (auto it = observers_.rbegin(); it != observers_.rend(); ++it) (*it)->finish(*this);

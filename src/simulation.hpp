@@ -76,6 +76,12 @@ class Simulation {
   bool failed() const { return !failure_.empty(); }
   const std::string& failure() const { return failure_; }
   double wallSeconds() const { return wall_seconds_; }
+  // This rank's set-up: wall time per phase, and its peak memory at the end.
+  const SetupSeconds& setupSeconds() const { return setup_seconds_; }
+  long setupPeakBytes() const { return setup_peak_bytes_; }
+  const Halo* halo() const { return halo_.get(); }  // null on one rank
+  // Collective reductions the time loop took (parallel::reductionCount).
+  long loopReductions() const { return loop_reductions_; }
   // Relative drifts of mass, momentum and total energy, what the boundaries
   // (and the remap's outer faces) put in subtracted.
   double driftMass() const;
@@ -107,6 +113,9 @@ class Simulation {
   StepLimit limit_;  // the next step's stable time step
   LoopState loop_, start_;
   bool restarted_ = false;
+  SetupSeconds setup_seconds_;
+  long setup_peak_bytes_ = 0;
+  long loop_reductions_ = 0;
   std::vector<double> pending_outputs_;  // snapshot times still ahead, sorted
   Totals totals_;
   std::string failure_;

@@ -76,6 +76,48 @@ void writeRunAndSpeed(JsonWriter& json, const Simulation& simulation, const RunR
   json.endObject();
 }
 
+// Set-up time per phase (the slowest rank's), peak memory per rank and the
+// halo's traffic (docs/performance.md, Parallel runs).
+void writeCosts(JsonWriter& json, const RankCosts& costs) {
+  json.beginObject("setup_seconds")
+      .value("generate", costs.setup.generate)
+      .value("sample_materials", costs.setup.sample_materials)
+      .value("decompose", costs.setup.decompose)
+      .value("initialize", costs.setup.initialize)
+      .value("total", costs.setup.total())
+      .value("note",
+             "wall time of each set-up phase, the slowest rank's (total: their sum); generate: "
+             "the problem's mesh and initial cells but the mixed-cell sampling")
+      .endObject();
+  const auto spread = [&](const std::string& name, const parallel::Spread& value) {
+    json.beginObject(name)
+        .value("min", value.min)
+        .value("mean", value.mean)
+        .value("max", value.max)
+        .endObject();
+  };
+  json.beginObject("memory");
+  spread("peak_bytes", costs.peak_bytes);
+  spread("setup_peak_bytes", costs.setup_peak_bytes);
+  spread("owned_cells", costs.owned_cells);
+  spread("peak_bytes_per_owned_cell", costs.peak_bytes_per_owned_cell);
+  json.value("note",
+             "per rank: peak resident set of the process (getrusage), of the whole run and at the "
+             "end of set-up; min, mean and max over the ranks")
+      .endObject();
+  json.beginObject("halo")
+      .value("bytes_per_step", costs.halo_bytes_per_step)
+      .value("messages_per_step", costs.halo_messages_per_step)
+      .value("cell_bytes_per_step", costs.halo_cell_bytes_per_step)
+      .value("node_bytes_per_step", costs.halo_node_bytes_per_step)
+      .value("bytes_per_step_max_rank", costs.halo_bytes_per_step_max_rank)
+      .value("reductions_per_step", costs.reductions_per_step)
+      .value("note",
+             "sent by all ranks together per step of this run (the busiest rank's apart); "
+             "reductions: collective reductions over the ranks per step")
+      .endObject();
+}
+
 void writeConservation(JsonWriter& json, const Simulation& simulation, const RunResult& result) {
   json.beginObject("drift")
       .value("mass", result.drift_mass)
@@ -141,6 +183,7 @@ void writeSummary(const std::string& path, const Simulation& simulation, const R
   json.beginObject();
   writeRunAndSpeed(json, simulation, result);
   writeConservation(json, simulation, result);
+  writeCosts(json, result.costs);
   writeInterfaces(json, simulation, result);
   writeChecksAndKeys(json, simulation.options().config, result);
   json.endObject();

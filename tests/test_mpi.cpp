@@ -17,6 +17,7 @@
 #include "src/floating_point.hpp"
 #include "src/kokkos_session.hpp"
 #include "src/parallel.hpp"
+#include "src/simulation.hpp"
 #include "test_support.hpp"
 
 namespace lagremap {
@@ -210,6 +211,58 @@ TEST(RankCount, DecomposedRunsReproduceTheSingleRankRun) {
       EXPECT_TRUE(a == b || (std::isnan(a) && std::isnan(b))) << c.problem << " " << a << " " << b;
     }
   }
+}
+
+// The halo's traffic, counted: per remap-mode step a node exchange after
+// each of the two nodal solves (velocities only) and a cell exchange after
+// each stage and after the remap, each of its own lean list (src/fields.hpp);
+// and the memory and set-up reports, over the ranks.
+TEST(Costs, HaloTrafficIsTheLeanListsAndMemoryIsReportedPerRank) {
+  const RunOptions options = testing::problemOptions("taylor", {"t_end=1e-4"}, 0.25, "remap");
+  Simulation simulation(options, findProblem("taylor"));
+  simulation.run();
+  ASSERT_FALSE(simulation.failed()) << simulation.failure();
+  const long steps = simulation.step();
+  ASSERT_GT(steps, 0);
+  const RankCosts costs = costsOverRanks(simulation, steps);
+  const Halo& halo = *simulation.halo();
+  const auto sends = [](const std::vector<Halo::Link>& links) {
+    double ids = 0.0;
+    for (const Halo::Link& link : links) ids += double(link.send.extent(0));
+    return parallel::sum(ids);
+  };
+  const auto doubles = [](const std::vector<FieldRef>& fields) {
+    double row = 0.0;
+    for (const FieldRef& field : fields) row += field.components;
+    return row;
+  };
+  const double cell_links = parallel::sum(double(halo.cell_links.size()));
+  const double node_links = parallel::sum(double(halo.node_links.size()));
+  EXPECT_EQ(costs.halo_messages_per_step, 3 * cell_links + 2 * node_links);
+  EXPECT_EQ(costs.halo_node_bytes_per_step, 2 * 3 * 8 * sends(halo.node_links));
+  const State& state = simulation.state();
+  const double cell_row = doubles(stageEndCellFields(state)) +
+                          doubles(stageEndCellFieldsForRemap(state)) +
+                          doubles(evolvedCellFields(state));
+  EXPECT_EQ(costs.halo_cell_bytes_per_step, 8 * cell_row * sends(halo.cell_links));
+  // less than the three exchanges of the whole cell state it replaces
+  EXPECT_LT(cell_row, 3 * doubles(cellStateFields(state)));
+  EXPECT_EQ(costs.halo_bytes_per_step,
+            costs.halo_cell_bytes_per_step + costs.halo_node_bytes_per_step);
+  EXPECT_GE(costs.reductions_per_step,
+            3.0);  // the two stages' and the remapped state's dt at least
+
+  EXPECT_GT(costs.setup_peak_bytes.min, 0.0);
+  EXPECT_GE(costs.peak_bytes.max, costs.setup_peak_bytes.max);
+  EXPECT_LE(costs.peak_bytes.min, costs.peak_bytes.mean);
+  EXPECT_LE(costs.peak_bytes.mean, costs.peak_bytes.max);
+  EXPECT_EQ(costs.owned_cells.mean * parallel::size(), double(simulation.mesh().n_global_cells));
+  EXPECT_GE(costs.setup.generate, 0.0);
+  EXPECT_GT(costs.setup.decompose, 0.0);
+  EXPECT_NEAR(costs.setup.total(),
+              costs.setup.generate + costs.setup.sample_materials + costs.setup.decompose +
+                  costs.setup.initialize,
+              1e-12);
 }
 
 // Every dataset of an HDF5 file, name -> raw bytes.
