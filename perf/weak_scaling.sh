@@ -33,7 +33,7 @@ exe=$build/lagremap
 mkdir -p "$out"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 export OMP_NUM_THREADS=1 OMP_PROC_BIND=false
-cores=$(nproc)
+cores=$(getconf _NPROCESSORS_ONLN)  # (nproc would count OMP_NUM_THREADS)
 
 # The process grid of a rank count: factors of 2 dealt to x, y, z in turn
 # (then any odd factor to x), so that every rank holds an n x n x n block.
