@@ -78,21 +78,25 @@ std::vector<FieldRef> cellStateFields(const State& state);
 // them through computeGeometry (dv/dt is kept for the time-step candidate).
 std::vector<FieldRef> evolvedCellFields(const State& state);
 
-// The halo's cell exchanges (DESIGN §6; docs/method.md §6.2): each moves the
-// fields that the kernels read in ghost cells before the next exchange and
-// cannot compute there themselves. A ghost cell's geometry (x_c, vol_c, A_cp,
-// and the stage-end volume shares) follows from its nodes, whose positions
-// its owners send (the node exchange), so it is computed, not sent; its
-// state is right only where its whole stencil is local (the first ghost
-// layer), so whatever a stage or the remap changes is sent.
-// - after the remap: evolvedCellFields (the next step's geometry and closure
-//   derive the rest on every cell, as a restart does);
+// The halo's cell exchanges (DESIGN §6; docs/method.md §7.4): each moves the
+// fields that kernels read in ghost cells, for owned results, before the
+// next exchange, and that the ghosts cannot compute themselves. A ghost
+// cell's geometry follows from its nodes, whose velocities its owners send
+// (the node exchange), so it is computed, not sent. A stage is complete on
+// the first ghost layer (its corner terms read the second layer's V, p and
+// S, which are sent; its nodes' velocities are sent), so the first layer
+// ends a stage with its owner's bits; the second layer's corner terms miss
+// their outer neighbours, and its state is wrong until the remap's exchange
+// (in lagrange mode for good: only its own kernels read it, and their results
+// go to ghost nodes and to itself).
+// - after the remap: evolvedCellFields to both layers (the next step's
+//   geometry and closure derive the rest on every cell, as a restart does);
 // - at the end of a stage with the closure (the predictor, a lagrange-mode
-//   corrector): what the stage changes, the closure's fields included, which
-//   the next stage's corner terms and mixed-cell rules read (mass, material
-//   masses and interface normals change only in the remap);
-// - at the end of a remap-mode corrector: what the remap reads that the
-//   stage changed (velocity, volume fractions, material energies, tensors).
+//   corrector): V, p and S_c, what the first layer's corner terms read of
+//   their neighbours;
+// - at the end of a remap-mode corrector: the primitives the first layer's
+//   remap gradients read of their neighbours that the stage changed
+//   (velocity, volume fractions, material energies, tensors).
 std::vector<FieldRef> stageEndCellFields(const State& state);
 std::vector<FieldRef> stageEndCellFieldsForRemap(const State& state);
 

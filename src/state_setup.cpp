@@ -110,30 +110,19 @@ std::vector<FieldRef> cellStateFields(const State& s) {
 }
 
 std::vector<FieldRef> stageEndCellFields(const State& s) {
+  // (what the first layer's corner terms read of their neighbours in the
+  // second: the first layer's own stage was complete, see src/fields.hpp)
   std::vector<FieldRef> list;
-  // (read in ghost cells: V, p, rho, aL, aT and S_c by the corner terms; E,
-  // e^k, alpha^k, w^k and the tensors as the next step's start (a lagrange-mode
-  // corrector), p^k by the mixed-cell work. Not e_c, len_c and dv/dt: outputs
-  // and time-step candidates, of owned cells only.)
   addIfAllocated(list, "v_c", s.v_c);
-  addIfAllocated(list, "E_c", s.E_c);
-  addIfAllocated(list, "alpha_ck", s.alpha_ck);
-  addIfAllocated(list, "e_ck", s.e_ck);
-  addIfAllocated(list, "S_ck", s.S_ck);
-  addIfAllocated(list, "B_ck", s.B_ck);
-  addIfAllocated(list, "p_ck", s.p_ck);
-  addIfAllocated(list, "w_ck", s.w_ck);
-  addIfAllocated(list, "rho_c", s.rho_c);
   addIfAllocated(list, "p_c", s.p_c);
-  addIfAllocated(list, "aL_c", s.aL_c);
-  addIfAllocated(list, "aT_c", s.aT_c);
   addIfAllocated(list, "S_c", s.S_c);
   return list;
 }
 
 std::vector<FieldRef> stageEndCellFieldsForRemap(const State& s) {
-  // (read in ghost cells by remapDensities: the rest it reads, m_c and m^k,
-  // only the remap changes; vol_c and x_c are the cells' shapes)
+  // (what the first layer's remap gradients read of the second layer's
+  // primitives: the rest of them, m_c and m^k, only the remap changes; vol_c
+  // and x_c are the cells' shapes)
   std::vector<FieldRef> list;
   addIfAllocated(list, "v_c", s.v_c);
   addIfAllocated(list, "alpha_ck", s.alpha_ck);
