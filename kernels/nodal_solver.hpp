@@ -355,15 +355,23 @@ KOKKOS_INLINE_FUNCTION Vec3 project(const SymMat3& projector, const Vec3& v) {
   return projector * v;
 }
 
-// CPU builds: the corner records (M_cp, B_cp) node n's gather will read, asked
-// for a few visits ahead. The nodes' corners are in other cells, one index
-// list away, so the hardware prefetchers cannot follow: without it the
-// gather's first loads took two thirds of the solve's time (performance.md
-// §3.1). A twin node reads nothing (its source's solution).
-template <class Offsets, class Corners, class Twins>
-KOKKOS_FORCEINLINE_FUNCTION void prefetchCornerRecords(const State& s, const Offsets& offsets,
+// CPU builds: the corner records (M_cp, B_cp) that the node visited
+// kPrefetchAhead visits later will gather, asked for now. The nodes' corners
+// are in other cells, one index list away, so the hardware prefetchers cannot
+// follow: without it the gather's first loads took two thirds of the solve's
+// time (performance.md §3.1). A twin node reads nothing (its source's
+// solution). Nothing in device passes (LAGREMAP_PREFETCHES is 0 there), where
+// the threads of a warp hide the latency.
+constexpr Index kPrefetchAhead = 16;  // node visits (twins included)
+template <class Order, class Offsets, class Corners, class Twins>
+KOKKOS_FORCEINLINE_FUNCTION void prefetchCornerRecords(const State& s, const Order& solve_order,
+                                                       const Offsets& offsets,
                                                        const Corners& corners,
-                                                       const Twins& twin_source, Index n) {
+                                                       const Twins& twin_source, Index visit) {
+#if LAGREMAP_PREFETCHES
+  const Index ahead = visit + kPrefetchAhead;
+  if (ahead >= Index(solve_order.extent(0))) return;
+  const Index n = solve_order(ahead);
   if (twin_source.extent(0) > 0 && twin_source(n) != n) return;
   for (Index i = offsets(n); i < offsets(n + 1); ++i) {
     const Index corner = corners(i);
@@ -373,6 +381,9 @@ KOKKOS_FORCEINLINE_FUNCTION void prefetchCornerRecords(const State& s, const Off
     LAGREMAP_PREFETCH(&s.B_cp(corner, 0));
     LAGREMAP_PREFETCH(&s.B_cp(corner, 2));
   }
+#else
+  (void)s, (void)solve_order, (void)offsets, (void)corners, (void)twin_source, (void)visit;
+#endif
 }
 
 }  // namespace detail
@@ -397,18 +408,13 @@ inline void nodalSolve(const Mesh& mesh, const State& state, const CornerControl
   const bool twins = twin_source.extent(0) > 0;
   const auto s = state;
   const bool atomics = controls.gather == Gather::Atomics;
-  const Index n_nodes = mesh.n_nodes;
-  constexpr bool kPrefetchCorners = LAGREMAP_PREFETCHES;
-  constexpr Index kPrefetchAhead = 16;  // node visits (twins included)
   Kokkos::parallel_for(
       atomics ? "lagremap::nodal_solve::atomics_sum" : "lagremap::nodal_solve::crs_gather",
       Kokkos::RangePolicy<ExecSpace>(0, mesh.n_nodes), KOKKOS_LAMBDA(const Index visit) {
         const Index n = node_solve_order(visit);
-        if constexpr (kPrefetchCorners) {
-          if (!atomics && visit + kPrefetchAhead < n_nodes) {
-            detail::prefetchCornerRecords(s, node_corner_offsets, node_corners, twin_source,
-                                          node_solve_order(visit + kPrefetchAhead));
-          }
+        if (!atomics) {
+          detail::prefetchCornerRecords(s, node_solve_order, node_corner_offsets, node_corners,
+                                        twin_source, visit);
         }
         if (twins && twin_source(n) != n) return;  // its twin's solution (below)
         SymMat3 impedance = identitySym(0.0);
