@@ -86,10 +86,11 @@ RunResult resultOf(const Simulation& simulation) {
   result.drift_mass = simulation.driftMass();
   result.drift_momentum = simulation.driftMomentum();
   result.drift_energy = simulation.driftEnergy();
-  result.costs = costsOverRanks(simulation, steps_run);
   result.fields =
       copyFields(simulation.mesh(), simulation.globalMesh(), simulation.state(), simulation.time());
   result.fields.probe = simulation.loopState().probe;
+  // (after the final fields' gather, which the peak memory then includes)
+  result.costs = costsOverRanks(simulation, steps_run);
   for (Index c = 0; c < Index(result.fields.v.extent(0)); ++c) {
     result.max_transverse_velocity =
         std::max({result.max_transverse_velocity, std::abs(result.fields.v(c, 1)),
