@@ -34,6 +34,10 @@ struct State {
   // material) is the lagrange-mode case, mixed cells come with the remap.
   int n_materials = 0;
   bool has_solids = false;  // some material has strength: S and B are carried
+  // Which of them the materials evolve (set with the material table): S^k of
+  // hypo-elastic materials, B^k of Neo-Hookean ones, whose S^k the closure
+  // derives from B^k. Both false: not known (the halo then sends both).
+  bool has_hypo_elastic = false, has_neo_hookean = false;
   // In a mixed cell, a material below this volume fraction is a trace: it is
   // carried (mass, energy) but has no say in the cell's stress (its density
   // is the ratio of two tiny remapped numbers). 0 in lagrange mode.

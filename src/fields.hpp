@@ -89,8 +89,9 @@ std::vector<FieldRef> evolvedCellFields(const State& state);
 // their outer neighbours, and its state is wrong until the remap's exchange
 // (in lagrange mode for good: only its own kernels read it, and their results
 // go to ghost nodes and to itself).
-// - after the remap: evolvedCellFields to both layers (the next step's
-//   geometry and closure derive the rest on every cell, as a restart does);
+// - after the remap: the evolved state to both layers (evolvedCellFields
+//   less the tensor the materials do not evolve; the next step's geometry and
+//   closure derive the rest on every cell, as a restart does);
 // - at the end of a stage with the closure (the predictor, a lagrange-mode
 //   corrector): V, p and S_c, what the first layer's corner terms read of
 //   their neighbours;
@@ -99,5 +100,6 @@ std::vector<FieldRef> evolvedCellFields(const State& state);
 //   (velocity, volume fractions, material energies, tensors).
 std::vector<FieldRef> stageEndCellFields(const State& state);
 std::vector<FieldRef> stageEndCellFieldsForRemap(const State& state);
+std::vector<FieldRef> remappedCellFields(const State& state);
 
 }  // namespace lagremap

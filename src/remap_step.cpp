@@ -62,7 +62,7 @@ RemapBoundaryFlux RemapStep::apply() {
   }
   if (halo_) {  // ghost cells: their owners' remapped state (DESIGN §6, src/fields.hpp)
     auto scope = timers_.scope(Phase::Halo);
-    halo_->exchangeCells(evolvedCellFields(state_));
+    halo_->exchangeCells(remappedCellFields(state_));
   }
   parallel::sum(crossed.v, 5);
   return crossed;

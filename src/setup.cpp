@@ -129,7 +129,11 @@ void uploadMaterials(const std::vector<MaterialParams>& materials, State& state)
   }
   state.materials = MaterialView("lagremap::state::materials", materials.size());
   auto materials_host = Kokkos::create_mirror_view(state.materials);
-  for (std::size_t k = 0; k < materials.size(); ++k) materials_host(k) = materials[k];
+  for (std::size_t k = 0; k < materials.size(); ++k) {
+    materials_host(k) = materials[k];
+    state.has_hypo_elastic |= materials[k].strength == StrengthKind::HypoElastic;
+    state.has_neo_hookean |= materials[k].strength == StrengthKind::NeoHookean;
+  }
   Kokkos::deep_copy(state.materials, materials_host);
 }
 

@@ -76,10 +76,21 @@ template <class ViewType>
 void addIfAllocated(std::vector<FieldRef>& list, const std::string& name, const ViewType& view) {
   if (view.extent(0) > 0 && view.size() > 0) list.push_back(fieldRef(name, view));
 }
+
+// The tensors the materials evolve, for the halo: S^k (hypo-elastic) and
+// B^k (Neo-Hookean; its S^k follows from B^k in the closure), both when the
+// state does not say (State::has_hypo_elastic, has_neo_hookean).
+void addEvolvedTensors(std::vector<FieldRef>& list, const State& s) {
+  const bool known = s.has_hypo_elastic || s.has_neo_hookean;
+  if (s.has_hypo_elastic || !known) addIfAllocated(list, "S_ck", s.S_ck);
+  if (s.has_neo_hookean || !known) addIfAllocated(list, "B_ck", s.B_ck);
+}
 }  // namespace
 
-std::vector<FieldRef> evolvedCellFields(const State& s) {
-  std::vector<FieldRef> list;
+namespace {
+// The evolved state (what a checkpoint holds): every tensor View, or
+// (halo) only the tensors the materials evolve.
+void addEvolvedFields(std::vector<FieldRef>& list, const State& s, bool every_tensor) {
   addIfAllocated(list, "m_c", s.m_c);
   addIfAllocated(list, "v_c", s.v_c);
   addIfAllocated(list, "E_c", s.E_c);
@@ -87,9 +98,19 @@ std::vector<FieldRef> evolvedCellFields(const State& s) {
   addIfAllocated(list, "alpha_ck", s.alpha_ck);
   addIfAllocated(list, "m_ck", s.m_ck);
   addIfAllocated(list, "e_ck", s.e_ck);
-  addIfAllocated(list, "S_ck", s.S_ck);
-  addIfAllocated(list, "B_ck", s.B_ck);
+  if (every_tensor) {
+    addIfAllocated(list, "S_ck", s.S_ck);
+    addIfAllocated(list, "B_ck", s.B_ck);
+  } else {
+    addEvolvedTensors(list, s);
+  }
   addIfAllocated(list, "n_ck", s.n_ck);  // interface normals of the last remap
+}
+}  // namespace
+
+std::vector<FieldRef> evolvedCellFields(const State& s) {
+  std::vector<FieldRef> list;
+  addEvolvedFields(list, s, true);
   return list;
 }
 
@@ -127,8 +148,13 @@ std::vector<FieldRef> stageEndCellFieldsForRemap(const State& s) {
   addIfAllocated(list, "v_c", s.v_c);
   addIfAllocated(list, "alpha_ck", s.alpha_ck);
   addIfAllocated(list, "e_ck", s.e_ck);
-  addIfAllocated(list, "S_ck", s.S_ck);
-  addIfAllocated(list, "B_ck", s.B_ck);
+  addEvolvedTensors(list, s);
+  return list;
+}
+
+std::vector<FieldRef> remappedCellFields(const State& s) {
+  std::vector<FieldRef> list;
+  addEvolvedFields(list, s, false);
   return list;
 }
 

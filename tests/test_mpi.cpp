@@ -243,7 +243,7 @@ TEST(Costs, HaloTrafficIsTheLeanListsAndMemoryIsReportedPerRank) {
   const State& state = simulation.state();
   const double cell_row = doubles(stageEndCellFields(state)) +
                           doubles(stageEndCellFieldsForRemap(state)) +
-                          doubles(evolvedCellFields(state));
+                          doubles(remappedCellFields(state));
   EXPECT_EQ(costs.halo_cell_bytes_per_step, 8 * cell_row * sends(halo.cell_links));
   // less than the three exchanges of the whole cell state it replaces
   EXPECT_LT(cell_row, 3 * doubles(cellStateFields(state)));
