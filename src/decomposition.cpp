@@ -65,6 +65,9 @@ void Halo::exchangeCells(const std::vector<FieldRef>& fields) const {
 void Halo::exchangeNodes(const std::vector<FieldRef>& fields) const {
   exchange(node_links, fields, node_traffic_);
 }
+void Halo::exchangeOuterCells(const std::vector<FieldRef>& fields) const {
+  exchange(outer_cell_links, fields, cell_traffic_);
+}
 
 void Halo::exchange(const std::vector<Link>& links, const std::vector<FieldRef>& fields,
                     Traffic& traffic) const {
@@ -238,6 +241,7 @@ struct LocalEntities {
   std::vector<long> cells, nodes;
   std::vector<int> cell_owner, node_owner;
   std::vector<Index> cell_local, node_local;
+  std::vector<int> cell_layer;  // 0 owned, else the ghost layer (1 or 2)
 };
 
 // Local cells: the owned box grown by the ghost layers, in global order.
@@ -254,6 +258,13 @@ void localCells(const Mesh& global, const CellOwner& cell_owner, const std::arra
         const long c = i + long(nx) * (j + long(ny) * k);
         local.cells.push_back(c);
         local.cell_owner.push_back(cell_owner(c));
+        // layer: the cell's distance (in cells, along the worst axis) from the owned box
+        const int index[3] = {i, j, k};
+        int layer = 0;
+        for (int d = 0; d < 3; ++d) {
+          layer = std::max({layer, box.lo[d] - index[d], index[d] - (box.hi[d] - 1)});
+        }
+        local.cell_layer.push_back(layer);
       }
   local.cell_local.assign(std::size_t(global.n_cells), -1);
   for (std::size_t i = 0; i < local.cells.size(); ++i) {
@@ -413,6 +424,12 @@ Subdomain decompose(const Mesh& global) {
   mesh.z_prisms = global.z_prisms;
 
   sub.halo.cell_links = makeLinks(local.cells, local.cell_owner, local.cell_local, "cell");
+  // the outer layer's cells alone (the first layer's owners masked as this rank)
+  std::vector<int> outer_owner = local.cell_owner;
+  for (std::size_t i = 0; i < outer_owner.size(); ++i) {
+    if (local.cell_layer[i] < kGhostLayers) outer_owner[i] = me;
+  }
+  sub.halo.outer_cell_links = makeLinks(local.cells, outer_owner, local.cell_local, "outer_cell");
   sub.halo.node_links = makeLinks(local.nodes, local.node_owner, local.node_local, "node");
   return sub;
 }

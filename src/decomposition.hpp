@@ -40,12 +40,17 @@ class Halo {
   // Ghost cells (resp. nodes) get their owners' values of `fields`.
   void exchangeCells(const std::vector<FieldRef>& fields) const;
   void exchangeNodes(const std::vector<FieldRef>& fields) const;
+  // Only the ghost cells of the outer layer (kGhostLayers cells from the
+  // owned box): what the first layer does not compute itself
+  // (docs/method.md §7.4).
+  void exchangeOuterCells(const std::vector<FieldRef>& fields) const;
 
   struct Link {
     int rank = 0;
     IndexView send, recv;  // local ids, in the order both sides agree on (global id)
   };
   std::vector<Link> cell_links, node_links;
+  std::vector<Link> outer_cell_links;  // the outer ghost layer's cells only
 
   // What this rank has sent so far, in cell and in node exchanges.
   struct Traffic {

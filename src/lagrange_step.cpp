@@ -90,10 +90,12 @@ StepLimit LagrangeStep::stage(double dt_stage, bool last_stage) {
     auto scope = timers_.scope(Phase::CellUpdate);
     limit = updateCellsAndGeometry(mesh_, state_, dt_stage, numerics_.step, what);
   }
-  if (halo_) {  // what the next stage, or the remap, reads in ghost cells (src/fields.hpp)
+  if (halo_) {
+    // what the next stage, or the remap, reads in the outer ghost layer (the
+    // first layer has completed the stage by itself: src/fields.hpp)
     auto scope = timers_.scope(Phase::Halo);
-    halo_->exchangeCells(what == StageEnd::ForRemap ? stageEndCellFieldsForRemap(state_)
-                                                    : stageEndCellFields(state_));
+    halo_->exchangeOuterCells(what == StageEnd::ForRemap ? stageEndCellFieldsForRemap(state_)
+                                                         : stageEndCellFields(state_));
   }
   return overAllRanks(limit);
 }
