@@ -93,11 +93,12 @@ std::vector<FieldRef> evolvedCellFields(const State& state);
 //   less the tensor the materials do not evolve; the next step's geometry and
 //   closure derive the rest on every cell, as a restart does);
 // - at the end of a stage with the closure (the predictor, a lagrange-mode
-//   corrector): V, p and S_c, what the first layer's corner terms read of
-//   their neighbours;
-// - at the end of a remap-mode corrector: the primitives the first layer's
-//   remap gradients read of their neighbours that the stage changed
-//   (velocity, volume fractions, material energies, tensors).
+//   corrector), to the second layer only (Halo::exchangeOuterCells): V, p
+//   and S_c, what the first layer's corner terms read of their neighbours;
+// - at the end of a remap-mode corrector, to the second layer only: the
+//   primitives the first layer's remap gradients read of their neighbours
+//   that the stage changed (velocity, volume fractions, material energies,
+//   the tensors the materials evolve).
 std::vector<FieldRef> stageEndCellFields(const State& state);
 std::vector<FieldRef> stageEndCellFieldsForRemap(const State& state);
 std::vector<FieldRef> remappedCellFields(const State& state);
