@@ -103,8 +103,10 @@ void Halo::exchange(const std::vector<Link>& links, const std::vector<FieldRef>&
   Kokkos::fence();
   // MPI reads host memory: a device build stages the buffers through host mirrors.
   Kokkos::deep_copy(send_host_, send_buffer_);
-  std::vector<MPI_Request> requests;
-  requests.reserve(2 * links.size());
+  // (kept from one exchange to the next: no allocation in the time step;
+  // exchanges run one at a time, on the thread that calls MPI)
+  static thread_local std::vector<MPI_Request> requests;
+  requests.clear();
   std::size_t send_offset = 0, recv_offset = 0;
   for (const Link& link : links) {
     const int recv_count = int(link.recv.extent(0)) * row;

@@ -32,9 +32,10 @@ std::string describeInvalidCell(const StepLimit& limit, long step, const char* w
 LagrangeStep::LagrangeStep(Mesh& mesh, State& state, const Numerics& numerics, PhaseTimers& timers,
                            const Halo* halo)
     : mesh_(mesh), state_(state), numerics_(numerics), timers_(timers), halo_(halo) {
-  const auto materials = Kokkos::create_mirror_view_and_copy(HostSpace(), state.materials);
-  for (std::size_t k = 0; k < materials.extent(0); ++k) {
-    evolves_b_ = evolves_b_ || materials(k).strength == StrengthKind::NeoHookean;
+  if (halo_) {
+    node_fields_ = {fieldRef("v_n", state_.v_n)};
+    stage_end_fields_ = stageEndCellFields(state_);
+    stage_end_fields_for_remap_ = stageEndCellFieldsForRemap(state_);
   }
 }
 
@@ -81,7 +82,7 @@ StepLimit LagrangeStep::stage(double dt_stage, bool last_stage) {
     // these give, computed as their owners do (the external forces are read
     // on owned nodes only: the boundary work)
     auto scope = timers_.scope(Phase::Halo);
-    halo_->exchangeNodes({fieldRef("v_n", state_.v_n)});
+    halo_->exchangeNodes(node_fields_);
     moveGhostNodes(mesh_, state_, dt_stage);
   }
   StepLimit limit;
@@ -94,8 +95,8 @@ StepLimit LagrangeStep::stage(double dt_stage, bool last_stage) {
     // what the next stage, or the remap, reads in the outer ghost layer (the
     // first layer has completed the stage by itself: src/fields.hpp)
     auto scope = timers_.scope(Phase::Halo);
-    halo_->exchangeOuterCells(what == StageEnd::ForRemap ? stageEndCellFieldsForRemap(state_)
-                                                         : stageEndCellFields(state_));
+    halo_->exchangeOuterCells(what == StageEnd::ForRemap ? stage_end_fields_for_remap_
+                                                         : stage_end_fields_);
   }
   return overAllRanks(limit);
 }
@@ -112,7 +113,7 @@ void LagrangeStep::saveStartOfStep() {
   }
   if (state_.has_solids) {  // fluids-only runs have no deviator or B to carry
     Kokkos::deep_copy(state_.S_ck0, state_.S_ck);
-    if (evolves_b_) Kokkos::deep_copy(state_.B_ck0, state_.B_ck);
+    if (state_.has_neo_hookean) Kokkos::deep_copy(state_.B_ck0, state_.B_ck);
   }
 }
 
@@ -124,7 +125,7 @@ void LagrangeStep::restoreStartOfStep() {
   if (state_.n_materials > 1) Kokkos::deep_copy(state_.alpha_ck, state_.alpha_ck0);
   if (state_.has_solids) {
     Kokkos::deep_copy(state_.S_ck, state_.S_ck0);
-    if (evolves_b_) Kokkos::deep_copy(state_.B_ck, state_.B_ck0);
+    if (state_.has_neo_hookean) Kokkos::deep_copy(state_.B_ck, state_.B_ck0);
   }
   computeGeometry();
 }

@@ -81,9 +81,9 @@ class LagrangeStep {
   PhaseTimers& timers_;
   const Halo* halo_;
   bool remap_follows_ = false;
-  // Some material is Neo-Hookean: B is evolved, so the step start keeps it
-  // (a hypo-elastic or fluid material's B stays the identity).
-  bool evolves_b_ = false;
+  // The halo's lists (src/fields.hpp), made once: the Views they name are
+  // the state's for the whole run.
+  std::vector<FieldRef> node_fields_, stage_end_fields_, stage_end_fields_for_remap_;
 };
 
 }  // namespace lagremap

@@ -45,6 +45,7 @@ RemapStep::RemapStep(Mesh& mesh, State& state, const RemapControls& controls, Ph
   m_c_saved_ = RealView("lagremap::remap::m_c_saved", n_cells);
   alpha_ck_saved_ = MatRealView("lagremap::remap::alpha_ck_saved", n_cells, state.n_materials);
   m_ck_saved_ = MatRealView("lagremap::remap::m_ck_saved", n_cells, state.n_materials);
+  if (halo_) remapped_fields_ = remappedCellFields(state);
 }
 
 RemapBoundaryFlux RemapStep::apply() {
@@ -62,7 +63,7 @@ RemapBoundaryFlux RemapStep::apply() {
   }
   if (halo_) {  // ghost cells: their owners' remapped state (DESIGN §6, src/fields.hpp)
     auto scope = timers_.scope(Phase::Halo);
-    halo_->exchangeCells(remappedCellFields(state_));
+    halo_->exchangeCells(remapped_fields_);
   }
   parallel::sum(crossed.v, 5);
   return crossed;

@@ -51,6 +51,7 @@ class RemapStep {
   SweptFaces swept_;
   RealView m_c_saved_;
   MatRealView alpha_ck_saved_, m_ck_saved_;
+  std::vector<FieldRef> remapped_fields_;  // the halo's list, made once (src/fields.hpp)
 };
 
 }  // namespace lagremap
