@@ -141,9 +141,12 @@ struct MassMoments {
 };
 
 // The initial state, rebuilt as the run built it (the sampled volume
-// fractions, initializeState's m = rho v), for the conserved totals.
+// fractions, initializeState's m = rho v), for the conserved totals: the
+// whole block on every rank, summed in the single-rank order, as the final
+// totals are summed from the gathered fields (the same bits on any rank count).
 MassMoments initialMoments(const Config& config) {
   MassMoments initial;
+  const parallel::SerialScope whole_block;
   const ProblemSetup setup = setupBall(config);
   std::vector<double> volume;
   std::vector<Vec3> centroid;

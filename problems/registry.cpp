@@ -361,6 +361,7 @@ ProblemSetup setupBlock(const Config& config, const Vec3& lo, const Vec3& hi,
   block.nz = int(config.integer("mesh.nz"));
   block.lo = lo;
   block.hi = hi;
+  block.part = thisRanksPart(block.nx, block.ny, block.nz);
   ProblemSetup setup;
   setup.mesh = buildBlockMesh(block, readBoundaries(config));
   setup.materials = std::move(materials);

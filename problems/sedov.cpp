@@ -53,8 +53,11 @@ ProblemSetup setupSedov(const Config& config) {
     cells.v.push_back({0.0, 0.0, 0.0});
     cells.mat.push_back(0);
   }
-  // Cell 0 touches the origin: it takes the octant's share of the blast.
-  cells.e[0] += (energy / 8.0) / (rho0 * volume[0]);
+  // Global cell 0 touches the origin: it takes the octant's share of the
+  // blast (held first by the parts that hold it, as local ids follow global ones).
+  if (setup.mesh.n_cells > 0 && setup.mesh.cell_global(0) == 0) {
+    cells.e[0] += (energy / 8.0) / (rho0 * volume[0]);
+  }
   return setup;
 }
 

@@ -109,6 +109,7 @@ ProblemSetup setupShell(const Config& config) {
   // Block (r, theta, z) -> polar (x, y, z): the y-min side is the plane y = 0,
   // the y-max side the plane x = 0.
   block.mapping = [](const Vec3& p) { return Vec3{p.x * std::cos(p.y), p.x * std::sin(p.y), p.z}; };
+  block.part = thisRanksPart(block.nx, block.ny, block.nz);
   ProblemSetup setup;
   setup.mesh = buildBlockMesh(block, readBoundaries(config));
   setup.materials = {be};

@@ -7,55 +7,9 @@
 #include <stdexcept>
 #include <utility>
 
-#include "mesh_setup.hpp"
 #include "parallel.hpp"
-#include "problem.hpp"
 
 namespace lagremap {
-
-std::array<int, 3> chooseProcessGrid(int nx, int ny, int nz, int n_ranks) {
-  std::array<int, 3> best{0, 0, 0};
-  double best_cut = std::numeric_limits<double>::infinity();
-  for (int px = 1; px <= n_ranks; ++px) {
-    if (n_ranks % px != 0 || px > nx) continue;
-    for (int py = 1; py <= n_ranks / px; ++py) {
-      if ((n_ranks / px) % py != 0 || py > ny) continue;
-      const int pz = n_ranks / (px * py);
-      if (pz > nz) continue;
-      // Faces cut by the partition planes.
-      const double cut =
-          double(px - 1) * ny * nz + double(py - 1) * nx * nz + double(pz - 1) * nx * ny;
-      if (cut < best_cut) {
-        best_cut = cut;
-        best = {px, py, pz};
-      }
-    }
-  }
-  if (best[0] == 0) {
-    throw std::invalid_argument("cannot split a " + std::to_string(nx) + " x " +
-                                std::to_string(ny) + " x " + std::to_string(nz) + " mesh over " +
-                                std::to_string(n_ranks) + " ranks (fewer cells than ranks)");
-  }
-  return best;
-}
-
-namespace {
-// Start of part `part` of `parts` balanced parts of n items.
-int splitStart(int n, int parts, int part) {
-  return int((long(n) * part) / parts);
-}
-}  // namespace
-
-CellBox ownedBox(int nx, int ny, int nz, const std::array<int, 3>& grid, int rank) {
-  const int n[3] = {nx, ny, nz};
-  const int coord[3] = {rank % grid[0], (rank / grid[0]) % grid[1], rank / (grid[0] * grid[1])};
-  CellBox box;
-  for (int d = 0; d < 3; ++d) {
-    box.lo[d] = splitStart(n[d], grid[d], coord[d]);
-    box.hi[d] = splitStart(n[d], grid[d], coord[d] + 1);
-  }
-  return box;
-}
 
 // --- halo exchange
 
@@ -134,27 +88,21 @@ void Halo::exchange(const std::vector<Link>& links, const std::vector<FieldRef>&
 
 namespace {
 
-template <class T>
-IndexView uploadIndices(const std::string& label, const std::vector<T>& list) {
+IndexView uploadIndices(const std::string& label, const std::vector<Index>& list) {
   Kokkos::View<Index*, HostSpace> host(label, list.size());
-  for (std::size_t i = 0; i < list.size(); ++i) host(i) = Index(list[i]);
+  for (std::size_t i = 0; i < list.size(); ++i) host(i) = list[i];
   IndexView device(Kokkos::view_alloc(Kokkos::WithoutInitializing, label), list.size());
   Kokkos::deep_copy(device, host);
   return device;
 }
 
-template <class DeviceViewT, class HostViewT>
-DeviceViewT upload(const HostViewT& host) {
-  DeviceViewT device(Kokkos::view_alloc(Kokkos::WithoutInitializing, host.label()), host.extent(0));
-  Kokkos::deep_copy(device, host);
-  return device;
-}
-
 // Ghost entities grouped by owner rank (recv), and what each rank asks of
-// this one (send), agreed by exchanging the global ids.
+// this one (send), agreed by exchanging the global ids. `local_of`: the local
+// id of a global id (a formula over the held box, no global table).
+template <class LocalOf>
 std::vector<Halo::Link> makeLinks(const std::vector<long>& local_global,
-                                  const std::vector<int>& local_owner,
-                                  const std::vector<Index>& global_to_local, const char* what) {
+                                  const std::vector<int>& local_owner, const LocalOf& local_of,
+                                  const char* what) {
   const int n_ranks = parallel::size(), me = parallel::rank();
   std::vector<std::vector<long>> wanted(n_ranks);
   std::vector<std::vector<Index>> recv_ids(n_ranks);
@@ -182,7 +130,7 @@ std::vector<Halo::Link> makeLinks(const std::vector<long>& local_global,
     if (recv_counts[r] == 0 && wanted[r].empty()) continue;
     std::vector<Index> send_ids;
     for (int i = recv_displs[r]; i < recv_displs[r + 1]; ++i) {
-      const Index local = global_to_local[std::size_t(asked[std::size_t(i)])];
+      const Index local = local_of(asked[std::size_t(i)]);
       if (local < 0) throw std::logic_error(std::string("halo: asked for a ") + what + " not held");
       send_ids.push_back(local);
     }
@@ -195,245 +143,69 @@ std::vector<Halo::Link> makeLinks(const std::vector<long>& local_global,
   return links;
 }
 
-// A device View's host copy, as create_mirror_view_and_copy returns it.
-template <class ViewT>
-using HostCopy = decltype(Kokkos::create_mirror_view_and_copy(HostSpace(), std::declval<ViewT>()));
-
-// Owner rank of every global cell of the block, from the split points along each axis.
-struct CellOwner {
-  int nx, ny;
-  std::array<int, 3> grid;
-  std::array<std::vector<int>, 3> part_of;  // per axis: the part of each cell index
-  int operator()(long c) const {
-    const int i = int(c % nx), j = int((c / nx) % ny), k = int(c / (long(nx) * ny));
-    return part_of[0][i] + grid[0] * (part_of[1][j] + grid[1] * part_of[2][k]);
-  }
-};
-
-CellOwner cellOwners(int nx, int ny, int nz, const std::array<int, 3>& grid) {
-  CellOwner owner{nx, ny, grid, {}};
-  const int n[3] = {nx, ny, nz};
-  for (int d = 0; d < 3; ++d) {
-    owner.part_of[d].resize(std::size_t(n[d]));
-    for (int p = 0; p < grid[d]; ++p)
-      for (int i = splitStart(n[d], grid[d], p); i < splitStart(n[d], grid[d], p + 1); ++i) {
-        owner.part_of[d][std::size_t(i)] = p;
-      }
-  }
-  return owner;
-}
-
-// Owner rank of every global node: the lowest rank owning one of its cells.
-std::vector<int> nodeOwners(const Mesh& global, const HostCopy<CellNodesView>& nodes_g,
-                            const CellOwner& cell_owner, int n_ranks) {
-  std::vector<int> node_owner(std::size_t(global.n_nodes), n_ranks);
-  for (Index c = 0; c < global.n_cells; ++c) {
-    const int owner = cell_owner(c);
-    for (int p = 0; p < 8; ++p) {
-      int& o = node_owner[std::size_t(nodes_g(c, p))];
-      o = std::min(o, owner);
-    }
-  }
-  return node_owner;
-}
-
-// This rank's cells and nodes: their global ids in increasing order, their
-// owners, and the global -> local maps (-1: not held here).
-struct LocalEntities {
-  std::vector<long> cells, nodes;
-  std::vector<int> cell_owner, node_owner;
-  std::vector<Index> cell_local, node_local;
-  std::vector<int> cell_layer;  // 0 owned, else the ghost layer (1 or 2)
-};
-
-// Local cells: the owned box grown by the ghost layers, in global order.
-void localCells(const Mesh& global, const CellOwner& cell_owner, const std::array<int, 3>& grid,
-                int me, LocalEntities& local) {
-  const int nx = global.nx, ny = global.ny, nz = global.nz;
-  const CellBox box = ownedBox(nx, ny, nz, grid, me);
-  for (int k = std::max(box.lo[2] - kGhostLayers, 0); k < std::min(box.hi[2] + kGhostLayers, nz);
-       ++k)
-    for (int j = std::max(box.lo[1] - kGhostLayers, 0); j < std::min(box.hi[1] + kGhostLayers, ny);
-         ++j)
-      for (int i = std::max(box.lo[0] - kGhostLayers, 0);
-           i < std::min(box.hi[0] + kGhostLayers, nx); ++i) {
-        const long c = i + long(nx) * (j + long(ny) * k);
-        local.cells.push_back(c);
-        local.cell_owner.push_back(cell_owner(c));
-        // layer: the cell's distance (in cells, along the worst axis) from the owned box
-        const int index[3] = {i, j, k};
-        int layer = 0;
-        for (int d = 0; d < 3; ++d) {
-          layer = std::max({layer, box.lo[d] - index[d], index[d] - (box.hi[d] - 1)});
-        }
-        local.cell_layer.push_back(layer);
-      }
-  local.cell_local.assign(std::size_t(global.n_cells), -1);
-  for (std::size_t i = 0; i < local.cells.size(); ++i) {
-    local.cell_local[std::size_t(local.cells[i])] = Index(i);
-  }
-}
-
-// Local nodes: those of the local cells, in global order.
-void localNodes(const Mesh& global, const HostCopy<CellNodesView>& nodes_g,
-                const std::vector<int>& node_owner, LocalEntities& local) {
-  std::vector<Index>& node_local = local.node_local;
-  std::vector<long>& nodes = local.nodes;
-  node_local.assign(std::size_t(global.n_nodes), -1);
-  for (long c : local.cells)
-    for (int p = 0; p < 8; ++p) {
-      const Index node = nodes_g(Index(c), p);
-      if (node_local[std::size_t(node)] < 0) {
-        node_local[std::size_t(node)] = 0;
-        nodes.push_back(node);
-      }
-    }
-  std::sort(nodes.begin(), nodes.end());
-  local.node_owner.resize(nodes.size());
-  for (std::size_t i = 0; i < nodes.size(); ++i) {
-    node_local[std::size_t(nodes[i])] = Index(i);
-    local.node_owner[i] = node_owner[std::size_t(nodes[i])];
-  }
-}
-
-// The local nodes' arrays: the global ones restricted and renumbered, and
-// the traction faces that are on local cells.
-void restrictNodes(const Mesh& global, const LocalEntities& local, int me, Mesh& mesh) {
-  const auto x_g = Kokkos::create_mirror_view_and_copy(HostSpace(), global.x_n);
-  const auto constrained_g =
-      Kokkos::create_mirror_view_and_copy(HostSpace(), global.node_constrained);
-  const auto projector_g = Kokkos::create_mirror_view_and_copy(HostSpace(), global.node_projector);
-  const auto traction_offsets_g =
-      Kokkos::create_mirror_view_and_copy(HostSpace(), global.node_traction_offsets);
-  const auto traction_faces_g =
-      Kokkos::create_mirror_view_and_copy(HostSpace(), global.node_traction_faces);
-  Vec3View::HostMirror x_host("lagremap::mesh::x_n", mesh.n_nodes);
-  Kokkos::View<int*, HostSpace> constrained_host("lagremap::mesh::node_constrained", mesh.n_nodes);
-  Sym6View::HostMirror projector_host("lagremap::mesh::node_projector", mesh.n_nodes);
-  Kokkos::View<int*, HostSpace> node_owned_host("lagremap::mesh::node_owned", mesh.n_nodes);
-  mesh.node_global = Kokkos::View<long*, HostSpace>("lagremap::mesh::node_global", mesh.n_nodes);
-  std::vector<Index> traction_offsets(std::size_t(mesh.n_nodes) + 1, 0), traction_faces;
-  for (Index n = 0; n < mesh.n_nodes; ++n) {
-    const Index g = Index(local.nodes[std::size_t(n)]);
-    for (int d = 0; d < 3; ++d) x_host(n, d) = x_g(g, d);
-    for (int d = 0; d < 6; ++d) projector_host(n, d) = projector_g(g, d);
-    constrained_host(n) = constrained_g(g);
-    node_owned_host(n) = local.node_owner[std::size_t(n)] == me;
-    mesh.node_global(n) = g;
-    for (Index i = traction_offsets_g(g); i < traction_offsets_g(g + 1); ++i) {
-      const Index face = traction_faces_g(i);
-      const Index cell = local.cell_local[std::size_t(face / 6)];
-      if (cell >= 0) traction_faces.push_back(6 * cell + face % 6);  // (a ghost node may miss some)
-    }
-    traction_offsets[std::size_t(n) + 1] = Index(traction_faces.size());
-  }
-  mesh.x_n = upload<Vec3View>(x_host);
-  mesh.node_constrained = upload<DeviceView<int*>>(constrained_host);
-  mesh.node_projector = upload<Sym6View>(projector_host);
-  mesh.node_owned = upload<DeviceView<int*>>(node_owned_host);
-  mesh.node_traction_offsets =
-      uploadIndices("lagremap::mesh::node_traction_offsets", traction_offsets);
-  mesh.node_traction_faces = uploadIndices("lagremap::mesh::node_traction_faces", traction_faces);
-}
-
-// Node -> corner CRS in local corner order, which is the global order.
-void uploadNodeCorners(const CellNodesView::HostMirror& nodes_host, Mesh& mesh) {
-  std::vector<Index> corner_offsets(std::size_t(mesh.n_nodes) + 1, 0);
-  for (Index c = 0; c < mesh.n_cells; ++c)
-    for (int p = 0; p < 8; ++p) ++corner_offsets[std::size_t(nodes_host(c, p)) + 1];
-  for (Index i = 0; i < mesh.n_nodes; ++i) corner_offsets[i + 1] += corner_offsets[i];
-  std::vector<Index> corners(std::size_t(corner_offsets.back()));
-  std::vector<Index> fill(corner_offsets.begin(), corner_offsets.end() - 1);
-  for (Index c = 0; c < mesh.n_cells; ++c)
-    for (int p = 0; p < 8; ++p) corners[std::size_t(fill[nodes_host(c, p)]++)] = 8 * c + p;
-  mesh.node_corner_offsets = uploadIndices("lagremap::mesh::node_corner_offsets", corner_offsets);
-  mesh.node_corners = uploadIndices("lagremap::mesh::node_corners", corners);
-  orderNodesByFirstCorner(mesh);
-}
-
-// The local cells' arrays: the global ones restricted and renumbered, and
-// the node -> corner CRS.
-void restrictCells(const Mesh& global, const HostCopy<CellNodesView>& nodes_g,
-                   const LocalEntities& local, int me, Mesh& mesh) {
-  const auto neighbors_g = Kokkos::create_mirror_view_and_copy(HostSpace(), global.cell_neighbors);
-  const auto side_g = Kokkos::create_mirror_view_and_copy(HostSpace(), global.cell_face_side);
-  const auto face_g = Kokkos::create_mirror_view_and_copy(HostSpace(), global.cell_neighbor_face);
-  CellNodesView::HostMirror nodes_host("lagremap::mesh::cell_nodes", mesh.n_cells);
-  CellFacesView::HostMirror neighbors_host("lagremap::mesh::cell_neighbors", mesh.n_cells);
-  CellFacesView::HostMirror side_host("lagremap::mesh::cell_face_side", mesh.n_cells);
-  CellFacesView::HostMirror face_host("lagremap::mesh::cell_neighbor_face", mesh.n_cells);
-  Kokkos::View<int*, HostSpace> cell_owned_host("lagremap::mesh::cell_owned", mesh.n_cells);
-  mesh.cell_global = Kokkos::View<long*, HostSpace>("lagremap::mesh::cell_global", mesh.n_cells);
-  for (Index c = 0; c < mesh.n_cells; ++c) {
-    const Index g = Index(local.cells[std::size_t(c)]);
-    for (int p = 0; p < 8; ++p) nodes_host(c, p) = local.node_local[std::size_t(nodes_g(g, p))];
-    for (int f = 0; f < 6; ++f) {
-      const Index nb = neighbors_g(g, f);
-      const Index nb_local = nb >= 0 ? local.cell_local[std::size_t(nb)] : -1;
-      neighbors_host(c, f) = nb_local;  // -1 across the cut of the outer ghost layer
-      side_host(c, f) = side_g(g, f);
-      face_host(c, f) = nb_local >= 0 ? face_g(g, f) : -1;
-    }
-    cell_owned_host(c) = local.cell_owner[std::size_t(c)] == me;
-    mesh.cell_global(c) = g;
-  }
-  uploadNodeCorners(nodes_host, mesh);
-  mesh.cell_nodes = upload<CellNodesView>(nodes_host);
-  mesh.cell_neighbors = upload<CellFacesView>(neighbors_host);
-  mesh.cell_face_side = upload<CellFacesView>(side_host);
-  mesh.cell_neighbor_face = upload<CellFacesView>(face_host);
-  mesh.cell_owned = upload<DeviceView<int*>>(cell_owned_host);
+// (i, j, k) of a global id on a block with n[0] x n[1] x n[2] entities
+std::array<int, 3> blockIndex(long id, const std::array<long, 3>& n) {
+  return {int(id % n[0]), int((id / n[0]) % n[1]), int(id / (n[0] * n[1]))};
 }
 
 }  // namespace
 
-Subdomain decompose(const Mesh& global) {
-  const int n_ranks = parallel::size(), me = parallel::rank();
-  const int nx = global.nx, ny = global.ny, nz = global.nz;
-  if (long(nx) * ny * nz != long(global.n_cells)) {
-    throw std::logic_error("decompose: the mesh is not an nx x ny x nz block");
+Halo makeHalo(const Mesh& mesh) {
+  const std::optional<BlockPart> found = thisRanksPart(mesh.nx, mesh.ny, mesh.nz);
+  if (!found) return Halo();
+  const BlockPart& part = *found;
+  const CellBox& held = part.held;
+  if (long(mesh.n_cells) != held.cells() ||
+      mesh.n_global_cells != part.dims[0] * long(part.dims[1]) * part.dims[2]) {
+    throw std::logic_error(
+        "makeHalo: the mesh is not this rank's part of its block (a generator must build "
+        "BlockSpec::part = thisRanksPart(...))");
   }
-  Subdomain sub;
-  sub.grid = chooseProcessGrid(nx, ny, nz, n_ranks);
+  const std::array<long, 3> cells{part.dims[0], part.dims[1], part.dims[2]};
+  const std::array<long, 3> nodes{cells[0] + 1, cells[1] + 1, cells[2] + 1};
+  const std::array<int, 3> held_cells{held.hi[0] - held.lo[0], held.hi[1] - held.lo[1],
+                                      held.hi[2] - held.lo[2]};
+  // local ids from global ids: (i, j, k) order within the held box
+  const auto local_cell = [&](long id) {
+    const std::array<int, 3> at = blockIndex(id, cells);
+    if (!held.contains(at[0], at[1], at[2])) return Index(-1);
+    return Index((at[0] - held.lo[0]) +
+                 held_cells[0] * ((at[1] - held.lo[1]) + held_cells[1] * (at[2] - held.lo[2])));
+  };
+  const auto local_node = [&](long id) {
+    const std::array<int, 3> at = blockIndex(id, nodes);
+    for (int d = 0; d < 3; ++d) {
+      if (at[d] < held.lo[d] || at[d] > held.hi[d]) return Index(-1);
+    }
+    return Index((at[0] - held.lo[0]) +
+                 (held_cells[0] + 1) *
+                     ((at[1] - held.lo[1]) + (held_cells[1] + 1) * (at[2] - held.lo[2])));
+  };
 
-  // Owner of every global cell and node, then this rank's cells and nodes.
-  const CellOwner cell_owner = cellOwners(nx, ny, nz, sub.grid);
-  const auto nodes_g = Kokkos::create_mirror_view_and_copy(HostSpace(), global.cell_nodes);
-  const std::vector<int> node_owner = nodeOwners(global, nodes_g, cell_owner, n_ranks);
-  LocalEntities local;
-  localCells(global, cell_owner, sub.grid, me, local);
-  localNodes(global, nodes_g, node_owner, local);
-
-  // --- the local mesh: the global arrays restricted and renumbered.
-  Mesh& mesh = sub.mesh;
-  mesh.nx = nx;
-  mesh.ny = ny;
-  mesh.nz = nz;
-  mesh.n_cells = Index(local.cells.size());
-  mesh.n_nodes = Index(local.nodes.size());
-  restrictNodes(global, local, me, mesh);
-  restrictCells(global, nodes_g, local, me, mesh);
-  mesh.side_traction = global.side_traction;  // per box side: shared, never written
-  mesh.side_kind = global.side_kind;
-  mesh.n_owned_cells = Index(std::count(local.cell_owner.begin(), local.cell_owner.end(), me));
-  mesh.n_owned_nodes = Index(std::count(local.node_owner.begin(), local.node_owner.end(), me));
-  mesh.n_global_cells = global.n_cells;
-  mesh.n_global_nodes = global.n_nodes;
-  findNodeTwins(mesh);
-  // one decision for every rank (the prism formulas differ from the general
-  // ones in round-off, and results may not depend on the rank count): the
-  // whole mesh's
-  mesh.z_prisms = global.z_prisms;
-
-  sub.halo.cell_links = makeLinks(local.cells, local.cell_owner, local.cell_local, "cell");
-  // the outer layer's cells alone (the first layer's owners masked as this rank)
-  std::vector<int> outer_owner = local.cell_owner;
-  for (std::size_t i = 0; i < outer_owner.size(); ++i) {
-    if (local.cell_layer[i] < kGhostLayers) outer_owner[i] = me;
+  std::vector<long> cell_ids(std::size_t(mesh.n_cells)), node_ids(std::size_t(mesh.n_nodes));
+  std::vector<int> cell_owner(cell_ids.size()), node_owner(node_ids.size());
+  std::vector<int> outer_owner(cell_ids.size());  // the first layer's owners masked as this rank
+  for (Index c = 0; c < mesh.n_cells; ++c) {
+    const long id = mesh.cell_global(c);
+    const std::array<int, 3> at = blockIndex(id, cells);
+    cell_ids[std::size_t(c)] = id;
+    cell_owner[std::size_t(c)] = part.cellOwner(at[0], at[1], at[2]);
+    outer_owner[std::size_t(c)] = part.ghostLayer(at[0], at[1], at[2]) < kGhostLayers
+                                      ? part.rank
+                                      : cell_owner[std::size_t(c)];
   }
-  sub.halo.outer_cell_links = makeLinks(local.cells, outer_owner, local.cell_local, "outer_cell");
-  sub.halo.node_links = makeLinks(local.nodes, local.node_owner, local.node_local, "node");
-  return sub;
+  for (Index n = 0; n < mesh.n_nodes; ++n) {
+    const long id = mesh.node_global(n);
+    const std::array<int, 3> at = blockIndex(id, nodes);
+    node_ids[std::size_t(n)] = id;
+    node_owner[std::size_t(n)] = part.nodeOwner(at[0], at[1], at[2]);
+  }
+  Halo halo;
+  halo.cell_links = makeLinks(cell_ids, cell_owner, local_cell, "cell");
+  // the outer layer's cells alone
+  halo.outer_cell_links = makeLinks(cell_ids, outer_owner, local_cell, "outer_cell");
+  halo.node_links = makeLinks(node_ids, node_owner, local_node, "node");
+  return halo;
 }
 
 void allgatherRows(const std::vector<long>& ids, const std::vector<double>& rows, int components,
@@ -458,28 +230,6 @@ void allgatherRows(const std::vector<long>& ids, const std::vector<double>& rows
   all_rows.resize(std::size_t(displs[n_ranks]));
   MPI_Allgatherv(rows.data(), count * components, MPI_DOUBLE, all_rows.data(), counts.data(),
                  displs.data(), MPI_DOUBLE, MPI_COMM_WORLD);
-}
-
-InitialCells localInitialCells(const InitialCells& global, const Mesh& local, int n_materials) {
-  InitialCells cells;
-  const bool mixed = !global.alpha_k.empty();
-  for (Index c = 0; c < local.n_cells; ++c) {
-    const std::size_t g = std::size_t(local.cell_global(c));
-    cells.v.push_back(global.v[g]);
-    if (!mixed) {
-      cells.rho.push_back(global.rho[g]);
-      cells.e.push_back(global.e[g]);
-      cells.mat.push_back(global.mat[g]);
-      continue;
-    }
-    for (int k = 0; k < n_materials; ++k) {
-      const std::size_t i = g * std::size_t(n_materials) + std::size_t(k);
-      cells.alpha_k.push_back(global.alpha_k[i]);
-      cells.rho_k.push_back(global.rho_k[i]);
-      cells.e_k.push_back(global.e_k[i]);
-    }
-  }
-  return cells;
 }
 
 }  // namespace lagremap

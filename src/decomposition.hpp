@@ -1,37 +1,20 @@
-// MPI domain decomposition (DESIGN §6): block partition of a generated mesh
-// over the ranks, ghost cells and nodes, and the halo exchange.
-//
-// Every rank generates the whole mesh (the generators stay serial and
-// unchanged), keeps its block of cells plus kGhostLayers layers round it and
-// their nodes, and numbers them in increasing global id. Two layers suffice
-// for one stage: a node of an owned cell gathers the corners of layer-1
-// cells, whose limited reconstruction reads their face neighbours (layer 2);
-// the remap's upwind cells are face neighbours too. After each nodal solve
-// the ghost nodes, and after each cell update or remap the ghost cells,
-// receive their owners' values, so every stage starts with all of them exact.
+// MPI domain decomposition (DESIGN §6): each rank builds only its part of
+// the generated block (BlockPart, src/block_part.hpp: its owned box of cells
+// plus kGhostLayers layers round it, and their nodes, numbered in increasing
+// global id), and the halo links the parts. After each nodal solve the ghost
+// nodes, and after each cell update or remap the ghost cells, receive their
+// owners' values (the lean lists of src/fields.hpp), so every stage starts
+// with what it reads exact.
 #pragma once
 
 #include <array>
 #include <vector>
 
 #include "../data/mesh.hpp"
+#include "block_part.hpp"
 #include "fields.hpp"
 
 namespace lagremap {
-
-struct InitialCells;
-
-constexpr int kGhostLayers = 2;
-
-// Ranks along x, y, z: the factorisation of n_ranks that cuts the fewest
-// faces of an nx x ny x nz block (no direction gets more ranks than cells).
-std::array<int, 3> chooseProcessGrid(int nx, int ny, int nz, int n_ranks);
-
-// Cell box [lo, hi) of `rank` on the process grid (balanced split of each direction).
-struct CellBox {
-  std::array<int, 3> lo, hi;
-};
-CellBox ownedBox(int nx, int ny, int nz, const std::array<int, 3>& grid, int rank);
 
 class Halo {
  public:
@@ -68,16 +51,12 @@ class Halo {
   mutable RealView::HostMirror send_host_, recv_host_;  // the same Views on host backends
 };
 
-// This rank's part of a globally generated mesh and the halo linking it to
-// the other ranks (collective: every rank calls it with the same mesh).
-struct Subdomain {
-  Mesh mesh;
-  Halo halo;
-  std::array<int, 3> grid{1, 1, 1};
-};
-Subdomain decompose(const Mesh& global);
-// The initial cells of the subdomain's cells, from the global ones.
-InitialCells localInitialCells(const InitialCells& global, const Mesh& local, int n_materials);
+// The halo of this rank's part (a mesh built with BlockSpec::part =
+// thisRanksPart(...)): which ghost cells and nodes each other rank owns, and
+// which of ours it holds, agreed by exchanging global ids. Collective; one
+// rank: no links. Throws std::logic_error for a mesh that is not this rank's
+// part (a generator that built the whole block).
+Halo makeHalo(const Mesh& mesh);
 
 // Every rank's owned rows (global id, `components` doubles each) on every rank.
 void allgatherRows(const std::vector<long>& ids, const std::vector<double>& rows, int components,

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "../kernels/hex.hpp"
+#include "parallel.hpp"
 
 namespace lagremap {
 namespace {
@@ -26,11 +27,40 @@ IndexView uploadList(const std::string& label, const std::vector<T>& list) {
   return device;
 }
 
-int nodeId(const BlockSpec& spec, int i, int j, int k) {
-  return i + (spec.nx + 1) * (j + (spec.ny + 1) * k);
-}
-int cellId(const BlockSpec& spec, int i, int j, int k) {
-  return i + spec.nx * (j + spec.ny * k);
+// The box of cells a mesh holds (the whole block, or a rank's held box) and
+// the numbering of its cells and nodes: local ids in (i, j, k) order within
+// the box, so that they increase with the global ids, which are the whole
+// block's (cell i + nx (j + ny k), node i + (nx + 1) (j + (ny + 1) k)).
+struct BlockWindow {
+  std::array<int, 3> dims, lo, hi;  // the block's cells; the held box [lo, hi)
+  int along(int d) const { return hi[d] - lo[d]; }
+  Index cells() const { return Index(along(0)) * along(1) * along(2); }
+  Index nodes() const { return Index(along(0) + 1) * (along(1) + 1) * (along(2) + 1); }
+  Index localCell(int i, int j, int k) const {
+    return (i - lo[0]) + along(0) * ((j - lo[1]) + along(1) * (k - lo[2]));
+  }
+  Index localNode(int i, int j, int k) const {
+    return (i - lo[0]) + (along(0) + 1) * ((j - lo[1]) + (along(1) + 1) * (k - lo[2]));
+  }
+  bool holdsNode(int i, int j, int k) const {
+    return i >= lo[0] && i <= hi[0] && j >= lo[1] && j <= hi[1] && k >= lo[2] && k <= hi[2];
+  }
+  long globalCell(int i, int j, int k) const { return i + long(dims[0]) * (j + long(dims[1]) * k); }
+  long globalNode(int i, int j, int k) const {
+    return i + long(dims[0] + 1) * (j + long(dims[1] + 1) * k);
+  }
+};
+
+BlockWindow windowOf(const BlockSpec& spec) {
+  BlockWindow window{{spec.nx, spec.ny, spec.nz}, {0, 0, 0}, {spec.nx, spec.ny, spec.nz}};
+  if (spec.part) {
+    if (spec.part->dims != window.dims) {
+      throw std::logic_error("buildBlockMesh: the part is of another block");
+    }
+    window.lo = spec.part->held.lo;
+    window.hi = spec.part->held.hi;
+  }
+  return window;
 }
 
 // The block's arrays on the host, filled step by step, then uploaded at once.
@@ -44,57 +74,70 @@ struct HostBlockMesh {
   std::vector<Index> traction_offsets, traction_faces;  // node -> traction face CRS
 };
 
-// Node coordinates: block, random interior perturbation, then the mapping
-// (the draws in node order, three per interior node).
-Vec3View::HostMirror nodeCoordinates(const BlockSpec& spec, Index n_nodes) {
-  Vec3View::HostMirror x_host("lagremap::mesh::x_n", n_nodes);
+// Node coordinates of the held nodes: block, random interior perturbation,
+// then the mapping. The draws go in the whole block's node order, three per
+// interior node, so a part's nodes are where the whole block puts them; an
+// unperturbed part visits its own nodes only.
+Vec3View::HostMirror nodeCoordinates(const BlockSpec& spec, const BlockWindow& window) {
+  Vec3View::HostMirror x_host("lagremap::mesh::x_n", window.nodes());
   const double dx = (spec.hi.x - spec.lo.x) / spec.nx;
   const double dy = (spec.hi.y - spec.lo.y) / spec.ny;
   const double dz = (spec.hi.z - spec.lo.z) / spec.nz;
   std::mt19937 rng(spec.seed);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  for (int k = 0; k <= spec.nz; ++k)
-    for (int j = 0; j <= spec.ny; ++j)
-      for (int i = 0; i <= spec.nx; ++i) {
+  const bool perturbed = spec.perturbation > 0.0;
+  std::array<int, 3> first = window.lo, last = window.hi;  // node index ranges, inclusive
+  if (perturbed) first = {0, 0, 0}, last = window.dims;
+  for (int k = first[2]; k <= last[2]; ++k)
+    for (int j = first[1]; j <= last[1]; ++j)
+      for (int i = first[0]; i <= last[0]; ++i) {
         Vec3 x{spec.lo.x + i * dx, spec.lo.y + j * dy, spec.lo.z + k * dz};
         const bool interior = i > 0 && i < spec.nx && j > 0 && j < spec.ny && k > 0 && k < spec.nz;
-        if (spec.perturbation > 0.0 && interior) {
+        if (perturbed && interior) {
           x += Vec3{spec.perturbation * dx * unit(rng), spec.perturbation * dy * unit(rng),
                     spec.perturbation * dz * unit(rng)};
         }
+        if (!window.holdsNode(i, j, k)) continue;
         if (spec.mapping) x = spec.mapping(x);
-        storeVec3(x_host, nodeId(spec, i, j, k), x);
+        storeVec3(x_host, window.localNode(i, j, k), x);
       }
   return x_host;
 }
 
-// Cell -> node (VTK hex), cell -> neighbour and boundary side per face.
-void cellConnectivity(const BlockSpec& spec, Index n_cells, HostBlockMesh& host) {
+// Cell -> node (VTK hex), cell -> neighbour and boundary side per face, for
+// the held cells; no neighbour (and no side) across a part's cut.
+void cellConnectivity(const BlockWindow& window, HostBlockMesh& host) {
+  const Index n_cells = window.cells();
   host.nodes = CellNodesView::HostMirror("lagremap::mesh::cell_nodes", n_cells);
   host.neighbors = CellFacesView::HostMirror("lagremap::mesh::cell_neighbors", n_cells);
   host.side = CellFacesView::HostMirror("lagremap::mesh::cell_face_side", n_cells);
-  for (int k = 0; k < spec.nz; ++k)
-    for (int j = 0; j < spec.ny; ++j)
-      for (int i = 0; i < spec.nx; ++i) {
-        const int c = cellId(spec, i, j, k);
-        const int corner_nodes[8] = {nodeId(spec, i, j, k),
-                                     nodeId(spec, i + 1, j, k),
-                                     nodeId(spec, i + 1, j + 1, k),
-                                     nodeId(spec, i, j + 1, k),
-                                     nodeId(spec, i, j, k + 1),
-                                     nodeId(spec, i + 1, j, k + 1),
-                                     nodeId(spec, i + 1, j + 1, k + 1),
-                                     nodeId(spec, i, j + 1, k + 1)};
+  for (int k = window.lo[2]; k < window.hi[2]; ++k)
+    for (int j = window.lo[1]; j < window.hi[1]; ++j)
+      for (int i = window.lo[0]; i < window.hi[0]; ++i) {
+        const Index c = window.localCell(i, j, k);
+        const Index corner_nodes[8] = {window.localNode(i, j, k),
+                                       window.localNode(i + 1, j, k),
+                                       window.localNode(i + 1, j + 1, k),
+                                       window.localNode(i, j + 1, k),
+                                       window.localNode(i, j, k + 1),
+                                       window.localNode(i + 1, j, k + 1),
+                                       window.localNode(i + 1, j + 1, k + 1),
+                                       window.localNode(i, j + 1, k + 1)};
         for (int p = 0; p < 8; ++p) host.nodes(c, p) = corner_nodes[p];
-        const bool at_lo[3] = {i == 0, j == 0, k == 0};
-        const bool at_hi[3] = {i == spec.nx - 1, j == spec.ny - 1, k == spec.nz - 1};
-        const int lo_neighbor[3] = {c - 1, c - spec.nx, c - spec.nx * spec.ny};
-        const int hi_neighbor[3] = {c + 1, c + spec.nx, c + spec.nx * spec.ny};
+        const int index[3] = {i, j, k};
         for (int axis = 0; axis < 3; ++axis) {
-          host.neighbors(c, 2 * axis) = at_lo[axis] ? -1 : lo_neighbor[axis];
-          host.neighbors(c, 2 * axis + 1) = at_hi[axis] ? -1 : hi_neighbor[axis];
-          host.side(c, 2 * axis) = at_lo[axis] ? 2 * axis : -1;
-          host.side(c, 2 * axis + 1) = at_hi[axis] ? 2 * axis + 1 : -1;
+          int lo_neighbor[3] = {i, j, k}, hi_neighbor[3] = {i, j, k};
+          --lo_neighbor[axis];
+          ++hi_neighbor[axis];
+          const bool block_lo = index[axis] == 0, block_hi = index[axis] == window.dims[axis] - 1;
+          const bool held_lo = index[axis] > window.lo[axis];
+          const bool held_hi = index[axis] < window.hi[axis] - 1;
+          host.neighbors(c, 2 * axis) =
+              held_lo ? window.localCell(lo_neighbor[0], lo_neighbor[1], lo_neighbor[2]) : -1;
+          host.neighbors(c, 2 * axis + 1) =
+              held_hi ? window.localCell(hi_neighbor[0], hi_neighbor[1], hi_neighbor[2]) : -1;
+          host.side(c, 2 * axis) = block_lo ? 2 * axis : -1;
+          host.side(c, 2 * axis + 1) = block_hi ? 2 * axis + 1 : -1;
         }
       }
 }
@@ -367,30 +410,71 @@ void findNodeTwins(Mesh& mesh) {
   Kokkos::deep_copy(mesh.node_twin_flip, flip_host);
 }
 
+namespace {
+
+// A part's global ids and owners (BlockPart, computed from (i, j, k)).
+void ownPart(const BlockPart& part, const BlockWindow& window, Mesh& mesh) {
+  Kokkos::View<int*, HostSpace> cell_owned("lagremap::mesh::cell_owned", mesh.n_cells);
+  Kokkos::View<int*, HostSpace> node_owned("lagremap::mesh::node_owned", mesh.n_nodes);
+  mesh.cell_global = Kokkos::View<long*, HostSpace>("lagremap::mesh::cell_global", mesh.n_cells);
+  mesh.node_global = Kokkos::View<long*, HostSpace>("lagremap::mesh::node_global", mesh.n_nodes);
+  mesh.n_owned_cells = mesh.n_owned_nodes = 0;
+  for (int k = window.lo[2]; k <= window.hi[2]; ++k)
+    for (int j = window.lo[1]; j <= window.hi[1]; ++j)
+      for (int i = window.lo[0]; i <= window.hi[0]; ++i) {
+        const Index n = window.localNode(i, j, k);
+        mesh.node_global(n) = window.globalNode(i, j, k);
+        node_owned(n) = part.nodeOwner(i, j, k) == part.rank;
+        mesh.n_owned_nodes += node_owned(n);
+        if (i == window.hi[0] || j == window.hi[1] || k == window.hi[2]) continue;
+        const Index c = window.localCell(i, j, k);
+        mesh.cell_global(c) = window.globalCell(i, j, k);
+        cell_owned(c) = part.cellOwner(i, j, k) == part.rank;
+        mesh.n_owned_cells += cell_owned(c);
+      }
+  upload(cell_owned, mesh.cell_owned);
+  upload(node_owned, mesh.node_owned);
+  mesh.n_global_cells = long(window.dims[0]) * window.dims[1] * window.dims[2];
+  mesh.n_global_nodes = long(window.dims[0] + 1) * (window.dims[1] + 1) * (window.dims[2] + 1);
+}
+
+}  // namespace
+
 Mesh buildBlockMesh(const BlockSpec& spec, const SideBoundaries& boundaries) {
   if (spec.nx < 1 || spec.ny < 1 || spec.nz < 1) {
     throw std::invalid_argument("mesh needs at least one cell in each direction");
   }
+  const BlockWindow window = windowOf(spec);
   Mesh mesh;
   mesh.nx = spec.nx;
   mesh.ny = spec.ny;
   mesh.nz = spec.nz;
-  const long n_nodes = long(spec.nx + 1) * (spec.ny + 1) * (spec.nz + 1);
-  const long n_cells = long(spec.nx) * spec.ny * spec.nz;
-  if (n_nodes >= (1L << 31) / 8) throw std::invalid_argument("mesh too large for 32-bit indices");
-  mesh.n_nodes = static_cast<Index>(n_nodes);
-  mesh.n_cells = static_cast<Index>(n_cells);
+  // (local ids, and corner ids 8 c + p, are 32-bit; global ids are long)
+  const long n_nodes = long(window.along(0) + 1) * (window.along(1) + 1) * (window.along(2) + 1);
+  if (n_nodes >= (1L << 31) / 8) {
+    throw std::invalid_argument("mesh too large for 32-bit indices on one rank (use more ranks)");
+  }
+  mesh.n_nodes = window.nodes();
+  mesh.n_cells = window.cells();
 
   HostBlockMesh host;
-  host.x = nodeCoordinates(spec, mesh.n_nodes);
-  cellConnectivity(spec, mesh.n_cells, host);
+  host.x = nodeCoordinates(spec, window);
+  cellConnectivity(window, host);
   host.neighbor_face = neighborFaces(host.nodes, host.neighbors, mesh.n_cells);
   nodeCorners(host.nodes, mesh.n_cells, mesh.n_nodes, host.corner_offsets, host.corners);
   boundaryConstraints(boundaries, mesh.n_cells, mesh.n_nodes, host);
   uploadMesh(host, mesh);
   uploadSides(boundaries, mesh);
-  ownEverything(mesh);
+  if (spec.part) {
+    ownPart(*spec.part, window, mesh);
+  } else {
+    ownEverything(mesh);
+  }
   findNodeTwins(mesh);
+  // One decision for every rank (the prism formulas differ from the general
+  // ones in round-off, and results may not depend on the rank count): the
+  // whole block's, a prism where every part's cells are.
+  if (spec.part) mesh.z_prisms = !parallel::any(!mesh.z_prisms);
   return mesh;
 }
 

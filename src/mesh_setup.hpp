@@ -3,8 +3,10 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 
 #include "../data/mesh.hpp"
+#include "block_part.hpp"
 
 namespace lagremap {
 
@@ -16,10 +18,20 @@ struct BlockSpec {
   // Random displacement of interior nodes, as a fraction of the local cell size (tests).
   double perturbation = 0.0;
   unsigned seed = 12345;
+  // A decomposed run's part (thisRanksPart): only its held box is built, the
+  // cells and nodes numbered in increasing global id, with their global ids
+  // and owners; none: the whole block, owned by the calling rank.
+  std::optional<BlockPart> part;
 };
 
-// Builds the mesh of a block with the side boundary conditions (all of it
-// owned by the calling rank).
+// Builds the mesh of a block, or of a rank's part of it, with the side
+// boundary conditions. Each node and cell is computed from its (i, j, k)
+// alone (the perturbation's draws excepted: they follow the whole block's
+// node order, so a part of a perturbed block costs the whole block's draws in
+// time, not in memory). A part's outer ghost layer has no neighbours across
+// the cut (cell_neighbors and cell_face_side -1 there), and the nodes on the
+// cut miss the corners, normals and traction faces of the cells beyond it:
+// their solution is their owner's (the halo's node exchange).
 Mesh buildBlockMesh(const BlockSpec& spec, const SideBoundaries& boundaries);
 // Marks every cell and node of the mesh owned, with global id = local id.
 void ownEverything(Mesh& mesh);

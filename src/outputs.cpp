@@ -11,7 +11,7 @@
 
 namespace lagremap {
 
-FinalFields copyFields(const Mesh& mesh, const Mesh* global, const State& state, double time) {
+FinalFields copyFields(const Mesh& mesh, bool global, const State& state, double time) {
   FinalFields fields;
   fields.time = time;
   fields.nx = mesh.nx;
@@ -24,7 +24,13 @@ FinalFields copyFields(const Mesh& mesh, const Mesh* global, const State& state,
   fields.mesh = copyToHost(mesh);
   if (global) {
     fields.mesh.x_n = gatherGlobal(fields.mesh.x_n, mesh, false);
-    fields.mesh.cell_nodes = Kokkos::create_mirror_view_and_copy(HostSpace(), global->cell_nodes);
+    // (global node ids below 2^31: the gathered fields are for meshes one rank can hold)
+    CellNodesView::HostMirror global_nodes("lagremap::mesh::cell_nodes", mesh.n_cells);
+    for (Index c = 0; c < mesh.n_cells; ++c)
+      for (int p = 0; p < 8; ++p) {
+        global_nodes(c, p) = Index(mesh.node_global(fields.mesh.cell_nodes(c, p)));
+      }
+    fields.mesh.cell_nodes = gatherGlobal(global_nodes, mesh, true);
   }
   fields.rho = cells(state.rho_c);
   fields.p = cells(state.p_c);
@@ -201,7 +207,7 @@ void SnapshotOutput::finish(const Simulation& simulation) {
 void SnapshotOutput::write(const Simulation& simulation) {
   auto scope = simulation.timers().scope(Phase::Output);
   const Mesh& mesh = simulation.mesh();
-  writeSnapshot(series_, copyFields(mesh, nullptr, simulation.state(), simulation.time()), mesh);
+  writeSnapshot(series_, copyFields(mesh, false, simulation.state(), simulation.time()), mesh);
 }
 
 CheckpointOutput::CheckpointOutput(const RunOptions& options, const SnapshotOutput& snapshots)

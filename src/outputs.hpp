@@ -14,9 +14,10 @@
 
 namespace lagremap {
 
-// Host copies of the fields of the whole mesh: a decomposed run (`global`:
-// the generated mesh, for its connectivity) gathers every rank's owned rows.
-FinalFields copyFields(const Mesh& mesh, const Mesh* global, const State& state, double time);
+// Host copies of the fields of this rank's mesh, or with `gather` (a
+// decomposed run) of the whole block: every rank's owned rows, and the
+// connectivity in global node ids, on every rank.
+FinalFields copyFields(const Mesh& mesh, bool gather, const State& state, double time);
 
 // history.csv: the totals of every step, after the initial state's line. A
 // restart keeps the lines of the steps it does not redo. Creates the output

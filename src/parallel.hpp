@@ -37,6 +37,8 @@ std::string broadcast(const std::string& text);
 // ("" if none): an error found by one rank becomes every rank's error.
 std::string firstMessage(const std::string& message);
 void barrier();
+// How many of the run's ranks share this machine's memory (1 on one rank).
+int ranksOnThisMachine();
 
 // The smallest, mean and largest of a per-rank value over the ranks.
 struct Spread {

@@ -163,7 +163,9 @@ struct CellShapes {
   std::vector<Vec3> centroid;
 };
 // The mesh of a block [lo, hi] from the problem's mesh.n* and bc.* keys, with
-// the given material table and the shapes of its cells.
+// the given material table and the shapes of its cells; on a decomposed run,
+// this rank's part of it (thisRanksPart): the generators compute each cell's
+// initial state from its own geometry, so they fill the part alone.
 ProblemSetup setupBlock(const Config& config, const Vec3& lo, const Vec3& hi,
                         std::vector<MaterialParams> materials, CellShapes& shapes);
 

@@ -87,7 +87,7 @@ RunResult resultOf(const Simulation& simulation) {
   result.drift_momentum = simulation.driftMomentum();
   result.drift_energy = simulation.driftEnergy();
   result.fields =
-      copyFields(simulation.mesh(), simulation.globalMesh(), simulation.state(), simulation.time());
+      copyFields(simulation.mesh(), parallel::size() > 1, simulation.state(), simulation.time());
   result.fields.probe = simulation.loopState().probe;
   // (after the final fields' gather, which the peak memory then includes)
   result.costs = costsOverRanks(simulation, steps_run);

@@ -79,18 +79,21 @@ Numerics readNumerics(const Config& config) {
 }
 
 // About 1.2 kB per cell: corner records, cell and node fields, host copies
-// for output.
+// for output. Each rank holds its part of the block (ghost layers aside), and
+// the ranks on this machine share its memory. Collective.
 void checkMemoryFits(const Config& config) {
   if (!config.has("mesh.nx") || !config.has("mesh.ny") || !config.has("mesh.nz")) return;
   const double cells = double(config.integer("mesh.nx")) * double(config.integer("mesh.ny")) *
                        double(config.integer("mesh.nz"));
-  const double needed = 1200.0 * cells;
+  const int here = parallel::ranksOnThisMachine(), ranks = parallel::size();
+  const double needed = 1200.0 * cells * here / ranks;
   const double available = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
   if (available > 0 && needed > 0.8 * available) {
-    char text[160];
+    char text[200];
     std::snprintf(text, sizeof text,
-                  "mesh of %.3g cells needs about %.1f GB, more than this machine's %.1f GB", cells,
-                  needed / 1e9, available / 1e9);
+                  "mesh of %.3g cells needs about %.1f GB for the %d of %d ranks on this machine, "
+                  "more than its %.1f GB",
+                  cells, needed / 1e9, here, ranks, available / 1e9);
     throw ConfigError(text);
   }
 }
@@ -101,20 +104,6 @@ ProblemSetup setUpProblem(const Problem& problem, const Config& config, const st
   } catch (const std::invalid_argument& error) {  // e.g. an impossible mesh
     throw ConfigError(name + ": " + error.what());
   }
-}
-
-std::unique_ptr<Halo> keepSubdomain(ProblemSetup& setup, Mesh& global_mesh,
-                                    const std::string& problem) {
-  Subdomain sub;
-  try {
-    sub = decompose(setup.mesh);
-  } catch (const std::invalid_argument& error) {
-    throw ConfigError(problem + ": " + error.what());
-  }
-  setup.cells = localInitialCells(setup.cells, sub.mesh, int(setup.materials.size()));
-  global_mesh = std::move(setup.mesh);
-  setup.mesh = std::move(sub.mesh);
-  return std::make_unique<Halo>(std::move(sub.halo));
 }
 
 namespace {

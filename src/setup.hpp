@@ -29,11 +29,6 @@ void checkMemoryFits(const Config& config);
 // The problem's mesh, materials and initial cells; an impossible mesh is ConfigError.
 ProblemSetup setUpProblem(const Problem& problem, const Config& config, const std::string& name);
 
-// Replaces the generated mesh and initial cells of `setup` by this rank's
-// subdomain; the generated mesh goes to `global_mesh` (output connectivity).
-std::unique_ptr<Halo> keepSubdomain(ProblemSetup& setup, Mesh& global_mesh,
-                                    const std::string& problem);
-
 // Uploads a problem's initial cells into an allocated state: m = rho v (v from
 // the same geometry the kernels use), E = e + |V|^2 / 2, and the material table.
 void initializeState(const ProblemSetup& setup, State& state);

@@ -45,8 +45,9 @@ Simulation::Simulation(const RunOptions& options, const Problem& problem)
   setup_seconds_.generate = phase.seconds() - setup_.sample_seconds;
   setup_seconds_.sample_materials = setup_.sample_seconds;
   phase.reset();
-  // decomposition (DESIGN §6): this rank's block of cells and its ghosts
-  if (parallel::size() > 1) halo_ = keepSubdomain(setup_, global_mesh_, options.problem);
+  // decomposition (DESIGN §6): the generator built this rank's part of the
+  // block (its cells, their ghosts and nodes); the halo links it to the others
+  if (parallel::size() > 1) halo_ = std::make_unique<Halo>(makeHalo(setup_.mesh));
   setup_seconds_.decompose = phase.seconds();
   phase.reset();
   Mesh& mesh = setup_.mesh;

@@ -60,8 +60,6 @@ class Simulation {
   const Problem& problem() const { return problem_; }
   const Mesh& mesh() const { return setup_.mesh; }
   const State& state() const { return state_; }
-  // The generated mesh of a decomposed run (output connectivity), else null.
-  const Mesh* globalMesh() const { return halo_ ? &global_mesh_ : nullptr; }
   const std::vector<MaterialParams>& materials() const { return setup_.materials; }
   const Numerics& numerics() const { return numerics_; }
   PhaseTimers& timers() const { return timers_; }
@@ -104,7 +102,6 @@ class Simulation {
   Numerics numerics_;
   double t_end_ = 0.0;
   ProblemSetup setup_;
-  Mesh global_mesh_;
   std::unique_ptr<Halo> halo_;
   State state_;
   mutable PhaseTimers timers_;

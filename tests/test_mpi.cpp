@@ -29,12 +29,14 @@ SideBoundaries walls() {
   return sides;
 }
 
-Mesh blockMesh(int nx, int ny, int nz) {
+// A perturbed block: this rank's part of it (`part`), or the whole block.
+Mesh blockMesh(int nx, int ny, int nz, bool part = true) {
   BlockSpec spec;
   spec.nx = nx;
   spec.ny = ny;
   spec.nz = nz;
   spec.perturbation = 0.2;
+  if (part) spec.part = thisRanksPart(nx, ny, nz);
   return buildBlockMesh(spec, walls());
 }
 
@@ -76,14 +78,71 @@ double maxRelativeDifference(const FinalFields& a, const FinalFields& b) {
   return worst;
 }
 
+// A rank's part is the whole block's cells and nodes, restricted: the same
+// coordinates (bits), connectivity, neighbours and boundary sides, in
+// increasing global id; across the cut, no neighbour and no side.
+void checkPartOfBlock(int nx, int ny, int nz) {
+  Mesh whole;
+  {
+    parallel::SerialScope serial;
+    whole = blockMesh(nx, ny, nz, false);
+  }
+  const Mesh part = blockMesh(nx, ny, nz);
+  ASSERT_EQ(part.n_global_cells, whole.n_cells);
+  ASSERT_EQ(part.n_global_nodes, whole.n_nodes);
+  const BlockPart expected = blockPart(nx, ny, nz, parallel::size(), parallel::rank());
+  EXPECT_EQ(long(part.n_cells), expected.held.cells());
+  const HostMesh w = copyToHost(whole), m = copyToHost(part);
+  const auto w_neighbors = Kokkos::create_mirror_view_and_copy(HostSpace(), whole.cell_neighbors);
+  const auto w_side = Kokkos::create_mirror_view_and_copy(HostSpace(), whole.cell_face_side);
+  const auto neighbors = Kokkos::create_mirror_view_and_copy(HostSpace(), part.cell_neighbors);
+  const auto side = Kokkos::create_mirror_view_and_copy(HostSpace(), part.cell_face_side);
+  for (Index n = 0; n < part.n_nodes; ++n) {
+    if (n > 0) {
+      ASSERT_LT(part.node_global(n - 1), part.node_global(n));
+    }
+    for (int d = 0; d < 3; ++d) ASSERT_EQ(m.x_n(n, d), w.x_n(Index(part.node_global(n)), d));
+  }
+  for (Index c = 0; c < part.n_cells; ++c) {
+    const Index g = Index(part.cell_global(c));
+    if (c > 0) {
+      ASSERT_LT(part.cell_global(c - 1), g);
+    }
+    for (int p = 0; p < 8; ++p) ASSERT_EQ(part.node_global(m.cell_nodes(c, p)), w.cell_nodes(g, p));
+    for (int f = 0; f < 6; ++f) {
+      const Index nb = neighbors(c, f);
+      if (nb >= 0) {
+        EXPECT_EQ(part.cell_global(nb), w_neighbors(g, f));
+        EXPECT_EQ(side(c, f), -1);
+      } else {
+        EXPECT_TRUE(w_side(g, f) == side(c, f) && (side(c, f) >= 0 || w_neighbors(g, f) >= 0))
+            << "cell " << g << " face " << f;  // a boundary side, or the cut
+      }
+    }
+  }
+  // (the slab: twins and prisms, decided alike)
+  EXPECT_EQ(part.z_prisms, whole.z_prisms);
+  EXPECT_EQ(part.node_twin_source.extent(0) > 0, whole.node_twin_source.extent(0) > 0);
+}
+
+TEST(Decomposition, EachRankBuildsItsPartOfTheBlock) {
+  for (const auto& dims : {std::array<int, 3>{12, 7, 3}, std::array<int, 3>{23, 9, 1}}) {
+    checkPartOfBlock(dims[0], dims[1], dims[2]);
+  }
+}
+
 TEST(Decomposition, EveryCellAndNodeHasExactlyOneOwnerAndTwoGhostLayers) {
   for (const auto& dims : {std::array<int, 3>{12, 7, 3}, std::array<int, 3>{23, 9, 1}}) {
-    const Mesh global = blockMesh(dims[0], dims[1], dims[2]);
-    const Subdomain sub = decompose(global);
-    const Mesh& mesh = sub.mesh;
-    EXPECT_EQ(sub.grid[0] * sub.grid[1] * sub.grid[2], parallel::size());
-    EXPECT_EQ(long(parallel::sum(double(mesh.n_owned_cells))), global.n_cells);
-    EXPECT_EQ(long(parallel::sum(double(mesh.n_owned_nodes))), global.n_nodes);
+    const Mesh mesh = blockMesh(dims[0], dims[1], dims[2]);
+    const Halo halo = makeHalo(mesh);
+    const BlockPart part = blockPart(dims[0], dims[1], dims[2], parallel::size(), parallel::rank());
+    EXPECT_EQ(part.grid[0] * part.grid[1] * part.grid[2], parallel::size());
+    const long n_cells = long(dims[0]) * dims[1] * dims[2];
+    const long n_nodes = long(dims[0] + 1) * (dims[1] + 1) * (dims[2] + 1);
+    EXPECT_EQ(mesh.n_global_cells, n_cells);
+    EXPECT_EQ(mesh.n_global_nodes, n_nodes);
+    EXPECT_EQ(long(parallel::sum(double(mesh.n_owned_cells))), n_cells);
+    EXPECT_EQ(long(parallel::sum(double(mesh.n_owned_nodes))), n_nodes);
     // Every global id owned once: the gathered owned rows hold each id once.
     for (const bool cells : {true, false}) {
       const auto owned = Kokkos::create_mirror_view_and_copy(
@@ -95,7 +154,7 @@ TEST(Decomposition, EveryCellAndNodeHasExactlyOneOwnerAndTwoGhostLayers) {
         if (owned(e)) mine.push_back(ids(e));
       allgatherRows(mine, rows, 0, all, all_rows);
       std::sort(all.begin(), all.end());
-      const long n = cells ? global.n_cells : global.n_nodes;
+      const long n = cells ? n_cells : n_nodes;
       ASSERT_EQ(long(all.size()), n);
       for (long i = 0; i < n; ++i) ASSERT_EQ(all[std::size_t(i)], i);
     }
@@ -128,7 +187,7 @@ TEST(Decomposition, EveryCellAndNodeHasExactlyOneOwnerAndTwoGhostLayers) {
     for (Index c = 0; c < mesh.n_cells; ++c)
       if (owned(c)) owned_ids.insert(mesh.cell_global(c));
     std::set<Index> outer;
-    for (const Halo::Link& link : sub.halo.outer_cell_links) {
+    for (const Halo::Link& link : halo.outer_cell_links) {
       const auto recv = Kokkos::create_mirror_view_and_copy(HostSpace(), link.recv);
       for (std::size_t r = 0; r < recv.extent(0); ++r) outer.insert(recv(r));
     }
@@ -150,9 +209,8 @@ TEST(Decomposition, EveryCellAndNodeHasExactlyOneOwnerAndTwoGhostLayers) {
 }
 
 TEST(Halo, GhostCellsAndNodesReceiveTheirOwnersValues) {
-  const Mesh global = blockMesh(10, 6, 4);
-  const Subdomain sub = decompose(global);
-  const Mesh& mesh = sub.mesh;
+  const Mesh mesh = blockMesh(10, 6, 4);
+  const Halo halo = makeHalo(mesh);
   // A known field of every shape: owners hold f(global id), ghosts garbage.
   auto value = [](long g, int j) { return 1000.0 + double(g) + 0.125 * j; };
   RealView scalar("scalar", mesh.n_cells);
@@ -177,8 +235,8 @@ TEST(Halo, GhostCellsAndNodesReceiveTheirOwnersValues) {
   Kokkos::deep_copy(scalar, scalar_h);
   Kokkos::deep_copy(tensor, tensor_h);
   Kokkos::deep_copy(nodal, nodal_h);
-  sub.halo.exchangeCells({fieldRef("scalar", scalar), fieldRef("tensor", tensor)});
-  sub.halo.exchangeNodes({fieldRef("nodal", nodal)});
+  halo.exchangeCells({fieldRef("scalar", scalar), fieldRef("tensor", tensor)});
+  halo.exchangeNodes({fieldRef("nodal", nodal)});
   Kokkos::deep_copy(scalar_h, scalar);
   Kokkos::deep_copy(tensor_h, tensor);
   Kokkos::deep_copy(nodal_h, nodal);
