@@ -150,7 +150,7 @@ std::array<int, 3> blockIndex(long id, const std::array<long, 3>& n) {
 
 }  // namespace
 
-Halo makeHalo(const Mesh& mesh) {
+Halo makeHalo(Mesh& mesh) {
   const std::optional<BlockPart> found = thisRanksPart(mesh.nx, mesh.ny, mesh.nz);
   if (!found) return Halo();
   const BlockPart& part = *found;
@@ -200,6 +200,7 @@ Halo makeHalo(const Mesh& mesh) {
     node_ids[std::size_t(n)] = id;
     node_owner[std::size_t(n)] = part.nodeOwner(at[0], at[1], at[2]);
   }
+  mesh.z_prisms = !parallel::any(!mesh.z_prisms);
   Halo halo;
   halo.cell_links = makeLinks(cell_ids, cell_owner, local_cell, "cell");
   // the outer layer's cells alone

@@ -53,10 +53,14 @@ class Halo {
 
 // The halo of this rank's part (a mesh built with BlockSpec::part =
 // thisRanksPart(...)): which ghost cells and nodes each other rank owns, and
-// which of ours it holds, agreed by exchanging global ids. Collective; one
-// rank: no links. Throws std::logic_error for a mesh that is not this rank's
-// part (a generator that built the whole block).
-Halo makeHalo(const Mesh& mesh);
+// which of ours it holds, agreed by exchanging global ids. It also takes the
+// decisions that must be the whole block's: Mesh::z_prisms, a prism where
+// every part's cells are (the prism formulas differ from the general ones in
+// round-off, and results may not depend on the rank count). Collective (the
+// generators are not: an error one rank finds in its part cannot leave the
+// others waiting); one rank: no links. Throws std::logic_error for a mesh
+// that is not this rank's part (a generator that built the whole block).
+Halo makeHalo(Mesh& mesh);
 
 // Every rank's owned rows (global id, `components` doubles each) on every rank.
 void allgatherRows(const std::vector<long>& ids, const std::vector<double>& rows, int components,

@@ -6,7 +6,6 @@
 #include <vector>
 
 #include "../kernels/hex.hpp"
-#include "parallel.hpp"
 
 namespace lagremap {
 namespace {
@@ -470,11 +469,7 @@ Mesh buildBlockMesh(const BlockSpec& spec, const SideBoundaries& boundaries) {
   } else {
     ownEverything(mesh);
   }
-  findNodeTwins(mesh);
-  // One decision for every rank (the prism formulas differ from the general
-  // ones in round-off, and results may not depend on the rank count): the
-  // whole block's, a prism where every part's cells are.
-  if (spec.part) mesh.z_prisms = !parallel::any(!mesh.z_prisms);
+  findNodeTwins(mesh);  // (a part's z_prisms: its own cells'; makeHalo settles it for the block)
   return mesh;
 }
 

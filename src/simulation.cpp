@@ -41,7 +41,8 @@ Simulation::Simulation(const RunOptions& options, const Problem& problem)
   const Config& config = options.config;
   checkMemoryFits(config);
   Kokkos::Timer phase;
-  setup_ = setUpProblem(problem, config, options.problem);
+  // (each rank builds its own part: an error in one is every rank's)
+  collectively([&] { setup_ = setUpProblem(problem, config, options.problem); });
   setup_seconds_.generate = phase.seconds() - setup_.sample_seconds;
   setup_seconds_.sample_materials = setup_.sample_seconds;
   phase.reset();
