@@ -8,7 +8,12 @@
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
 
+#include "../src/exact_sum.hpp"
 #include "../src/problem.hpp"
 
 namespace lagremap {
@@ -63,6 +68,8 @@ ProblemSetup setupSedov(const Config& config) {
 
 // Mass and volume of the cells in each of n_bins spherical shells of the
 // octant, while radial.csv gets every cell's radius, density, pressure, speed.
+// The bins are exact sums (ExactSum): the same bits on any rank count, where
+// each rank bins its owned cells (radial.csv then lists them rank by rank).
 struct RadialBins {
   std::vector<double> mass, volume;
 };
@@ -70,23 +77,37 @@ struct RadialBins {
 RadialBins radialProfile(const FinalFields& fields, double size, int n_bins,
                          const std::string& out_dir) {
   const Index n_cells = Index(fields.rho.extent(0));
-  std::ofstream radial;
-  if (!out_dir.empty()) radial.open(out_dir + "/radial.csv");
-  radial << "r,rho,p,speed\n" << std::setprecision(8);
-  RadialBins bins{std::vector<double>(n_bins, 0.0), std::vector<double>(n_bins, 0.0)};
+  std::ostringstream rows;
+  rows << std::setprecision(8);
+  std::vector<ExactSum> sums(2 * std::size_t(n_bins));  // mass, then volume
   for (Index c = 0; c < n_cells; ++c) {
+    if (!fields.counts(c)) continue;
     const double r =
         std::sqrt(fields.x_c(c, 0) * fields.x_c(c, 0) + fields.x_c(c, 1) * fields.x_c(c, 1) +
                   fields.x_c(c, 2) * fields.x_c(c, 2));
     const double speed =
         std::sqrt(fields.v(c, 0) * fields.v(c, 0) + fields.v(c, 1) * fields.v(c, 1) +
                   fields.v(c, 2) * fields.v(c, 2));
-    radial << r << ',' << fields.rho(c) << ',' << fields.p(c) << ',' << speed << '\n';
+    rows << r << ',' << fields.rho(c) << ',' << fields.p(c) << ',' << speed << '\n';
     const int bin = int(r / size * n_bins);
     if (bin < n_bins) {
-      bins.mass[bin] += fields.rho(c) * fields.vol(c);
-      bins.volume[bin] += fields.vol(c);
+      sums[std::size_t(bin)] += fields.rho(c) * fields.vol(c);
+      sums[std::size_t(n_bins + bin)] += fields.vol(c);
     }
+  }
+  std::ofstream radial;
+  if (!out_dir.empty()) radial.open(out_dir + "/radial.csv");
+  radial << "r,rho,p,speed\n";
+  if (fields.distributed) {
+    ExactSum::sumOverRanks(sums);
+    parallel::writeOnRoot(rows.str(), out_dir.empty() ? nullptr : &radial);
+  } else {
+    radial << rows.str();
+  }
+  RadialBins bins{std::vector<double>(n_bins), std::vector<double>(n_bins)};
+  for (int b = 0; b < n_bins; ++b) {
+    bins.mass[b] = sums[std::size_t(b)].value();
+    bins.volume[b] = sums[std::size_t(n_bins + b)].value();
   }
   return bins;
 }
@@ -117,43 +138,103 @@ double shockRadius(const FinalFields& fields, double size, const std::string& ou
 }
 
 // Octant symmetry: the field is invariant under exchanges of x, y, z (on a
-// cubic mesh): the largest density difference under them, and the largest density.
+// cubic mesh): the largest density difference under them, and the largest
+// density. Each cell is compared with its images under the three exchanges;
+// on ranks that hold their owned cells only, a cell's density goes to the
+// owners of its images (each exchange is its own inverse), which compare it
+// with theirs: the same pairs, and a maximum, so the same bits.
 struct OctantSymmetry {
   double asymmetry = 0.0, rho_max = 0.0;
 };
 
 OctantSymmetry octantSymmetry(const FinalFields& fields) {
   OctantSymmetry s;
-  const int nx = fields.nx, ny = fields.ny, nz = fields.nz;
-  auto id = [&](int i, int j, int k) { return i + nx * (j + ny * k); };
-  for (int k = 0; k < nz; ++k)
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) {
-        const double rho = fields.rho(id(i, j, k));
-        s.rho_max = std::max(s.rho_max, rho);
-        s.asymmetry = std::max({s.asymmetry, std::abs(rho - fields.rho(id(j, i, k))),
-                                std::abs(rho - fields.rho(id(k, j, i))),
-                                std::abs(rho - fields.rho(id(i, k, j)))});
-      }
+  const int nx = fields.nx, ny = fields.ny;
+  auto id = [&](int i, int j, int k) { return i + long(nx) * (j + long(ny) * k); };
+  auto images = [&](long g, long image[3], int ijk[3][3]) {
+    const int i = int(g % nx), j = int((g / nx) % ny), k = int(g / (long(nx) * ny));
+    const int index[3][3] = {{j, i, k}, {k, j, i}, {i, k, j}};
+    for (int e = 0; e < 3; ++e) {
+      for (int d = 0; d < 3; ++d) ijk[e][d] = index[e][d];
+      image[e] = id(index[e][0], index[e][1], index[e][2]);
+    }
+  };
+  const Index n_cells = Index(fields.rho.extent(0));
+  if (!fields.distributed) {
+    for (Index c = 0; c < n_cells; ++c) {
+      long image[3];
+      int ijk[3][3];
+      images(c, image, ijk);
+      const double rho = fields.rho(c);
+      s.rho_max = std::max(s.rho_max, rho);
+      for (long g : image) s.asymmetry = std::max(s.asymmetry, std::abs(rho - fields.rho(g)));
+    }
+    return s;
+  }
+  const BlockPart part = *thisRanksPart(fields.nx, fields.ny, fields.nz);
+  std::vector<parallel::KeyedValue> items;
+  std::vector<int> owners;
+  for (Index c = 0; c < n_cells; ++c) {
+    if (!fields.counts(c)) continue;
+    long image[3];
+    int ijk[3][3];
+    images(fields.globalCell(c), image, ijk);
+    s.rho_max = std::max(s.rho_max, fields.rho(c));
+    for (int e = 0; e < 3; ++e) {
+      items.push_back({image[e], fields.rho(c)});
+      owners.push_back(part.cellOwner(ijk[e][0], ijk[e][1], ijk[e][2]));
+    }
+  }
+  for (const parallel::KeyedValue& item : parallel::deliver(items, owners)) {
+    const long g = item.key;
+    const Index local =
+        Index(part.localCell(int(g % nx), int((g / nx) % ny), int(g / (long(nx) * ny))));
+    s.asymmetry = std::max(s.asymmetry, std::abs(fields.rho(local) - item.value));
+  }
+  s.asymmetry = parallel::max(s.asymmetry);
+  s.rho_max = parallel::max(s.rho_max);
   return s;
 }
 
 // slice_z.csv: the cell layer at z = 0 with the corners of each cell's bottom
 // face (VTK nodes 0-3), so the map shows the Lagrangian cells as they are.
+// Ranks that hold their owned cells only send their rows of the layer to
+// rank 0, which writes them in cell order.
 void writeSliceZ(const std::string& out_dir, const FinalFields& fields) {
-  std::ofstream slice;
-  if (!out_dir.empty()) slice.open(out_dir + "/slice_z.csv");
-  slice << "x,y,rho,p,speed,x0,y0,x1,y1,x2,y2,x3,y3\n" << std::setprecision(8);
-  for (Index c = 0; c < fields.nx * fields.ny; ++c) {
-    slice << fields.x_c(c, 0) << ',' << fields.x_c(c, 1) << ',' << fields.rho(c) << ','
-          << fields.p(c) << ','
-          << std::sqrt(fields.v(c, 0) * fields.v(c, 0) + fields.v(c, 1) * fields.v(c, 1));
+  const long layer = long(fields.nx) * fields.ny;
+  std::ostringstream rows;
+  rows << std::setprecision(8);
+  for (Index c = 0; c < Index(fields.rho.extent(0)); ++c) {
+    const long g = fields.globalCell(c);
+    if (g >= layer || !fields.counts(c)) continue;
+    if (fields.distributed) rows << g << ' ';
+    rows << fields.x_c(c, 0) << ',' << fields.x_c(c, 1) << ',' << fields.rho(c) << ','
+         << fields.p(c) << ','
+         << std::sqrt(fields.v(c, 0) * fields.v(c, 0) + fields.v(c, 1) * fields.v(c, 1));
     for (int p = 0; p < 4; ++p) {
       const Index node = fields.mesh.cell_nodes(c, p);
-      slice << ',' << fields.mesh.x_n(node, 0) << ',' << fields.mesh.x_n(node, 1);
+      rows << ',' << fields.mesh.x_n(node, 0) << ',' << fields.mesh.x_n(node, 1);
     }
-    slice << '\n';
+    rows << '\n';
   }
+  std::ofstream slice;
+  if (!out_dir.empty()) slice.open(out_dir + "/slice_z.csv");
+  slice << "x,y,rho,p,speed,x0,y0,x1,y1,x2,y2,x3,y3\n";
+  if (!fields.distributed) {
+    slice << rows.str();
+    return;
+  }
+  std::ostringstream gathered;  // (the layer only: nx ny rows on rank 0)
+  parallel::writeOnRoot(rows.str(), &gathered);
+  if (out_dir.empty()) return;
+  std::vector<std::pair<long, std::string>> lines;
+  std::istringstream in(gathered.str());
+  for (std::string line; std::getline(in, line);) {
+    const std::size_t space = line.find(' ');
+    lines.emplace_back(std::stol(line.substr(0, space)), line.substr(space + 1));
+  }
+  std::sort(lines.begin(), lines.end());
+  for (const auto& line : lines) slice << line.second << '\n';
 }
 
 std::vector<Check> finishSedov(const Config& config, const FinalFields& fields,
@@ -189,7 +270,10 @@ std::vector<Check> finishSedov(const Config& config, const FinalFields& fields,
 }  // namespace
 
 extern const Problem kSedovProblem = {
-    "sedov", "3D point blast in an octant (symmetry planes), self-similar shock radius",
-    declareSedov, setupSedov, finishSedov};
+    "sedov",      "3D point blast in an octant (symmetry planes), self-similar shock radius",
+    declareSedov, setupSedov,
+    finishSedov,  nullptr,
+    nullptr,      {},
+    true};  // the checks read owned cells (no gather of the whole fields)
 
 }  // namespace lagremap

@@ -79,6 +79,21 @@ int BlockPart::ghostLayer(int i, int j, int k) const {
   return layer;
 }
 
+long BlockPart::localCell(int i, int j, int k) const {
+  if (!held.contains(i, j, k)) return -1;
+  const long nx = held.hi[0] - held.lo[0], ny = held.hi[1] - held.lo[1];
+  return (i - held.lo[0]) + nx * ((j - held.lo[1]) + ny * (k - held.lo[2]));
+}
+
+long BlockPart::localNode(int i, int j, int k) const {
+  const int index[3] = {i, j, k};
+  for (int d = 0; d < 3; ++d) {
+    if (index[d] < held.lo[d] || index[d] > held.hi[d]) return -1;
+  }
+  const long nx = held.hi[0] - held.lo[0] + 1, ny = held.hi[1] - held.lo[1] + 1;
+  return (i - held.lo[0]) + nx * ((j - held.lo[1]) + ny * (k - held.lo[2]));
+}
+
 BlockPart blockPart(int nx, int ny, int nz, int n_ranks, int rank) {
   BlockPart part;
   part.dims = {nx, ny, nz};

@@ -46,6 +46,10 @@ struct BlockPart {
   // How many layers a held cell lies outside the owned box (0: owned; the
   // largest distance along one axis).
   int ghostLayer(int i, int j, int k) const;
+  // The local id of held cell (i, j, k), of held node (i, j, k): (i, j, k)
+  // order within the held box, which is increasing global id; -1 if not held.
+  long localCell(int i, int j, int k) const;
+  long localNode(int i, int j, int k) const;
 };
 
 // `rank`'s part of the block on n_ranks ranks (chooseProcessGrid, ownedBox).

@@ -154,8 +154,7 @@ Halo makeHalo(Mesh& mesh) {
   const std::optional<BlockPart> found = thisRanksPart(mesh.nx, mesh.ny, mesh.nz);
   if (!found) return Halo();
   const BlockPart& part = *found;
-  const CellBox& held = part.held;
-  if (long(mesh.n_cells) != held.cells() ||
+  if (long(mesh.n_cells) != part.held.cells() ||
       mesh.n_global_cells != part.dims[0] * long(part.dims[1]) * part.dims[2]) {
     throw std::logic_error(
         "makeHalo: the mesh is not this rank's part of its block (a generator must build "
@@ -163,23 +162,14 @@ Halo makeHalo(Mesh& mesh) {
   }
   const std::array<long, 3> cells{part.dims[0], part.dims[1], part.dims[2]};
   const std::array<long, 3> nodes{cells[0] + 1, cells[1] + 1, cells[2] + 1};
-  const std::array<int, 3> held_cells{held.hi[0] - held.lo[0], held.hi[1] - held.lo[1],
-                                      held.hi[2] - held.lo[2]};
-  // local ids from global ids: (i, j, k) order within the held box
+  // local ids from global ids, by the held box's formula
   const auto local_cell = [&](long id) {
     const std::array<int, 3> at = blockIndex(id, cells);
-    if (!held.contains(at[0], at[1], at[2])) return Index(-1);
-    return Index((at[0] - held.lo[0]) +
-                 held_cells[0] * ((at[1] - held.lo[1]) + held_cells[1] * (at[2] - held.lo[2])));
+    return Index(part.localCell(at[0], at[1], at[2]));
   };
   const auto local_node = [&](long id) {
     const std::array<int, 3> at = blockIndex(id, nodes);
-    for (int d = 0; d < 3; ++d) {
-      if (at[d] < held.lo[d] || at[d] > held.hi[d]) return Index(-1);
-    }
-    return Index((at[0] - held.lo[0]) +
-                 (held_cells[0] + 1) *
-                     ((at[1] - held.lo[1]) + (held_cells[1] + 1) * (at[2] - held.lo[2])));
+    return Index(part.localNode(at[0], at[1], at[2]));
   };
 
   std::vector<long> cell_ids(std::size_t(mesh.n_cells)), node_ids(std::size_t(mesh.n_nodes));

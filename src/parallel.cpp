@@ -45,6 +45,12 @@ void sum(double* values, int n) {
   MPI_Allreduce(MPI_IN_PLACE, values, n, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
 }
 
+void sum(std::int64_t* values, int n) {
+  if (size() == 1) return;
+  ++reductions;
+  MPI_Allreduce(MPI_IN_PLACE, values, n, MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD);
+}
+
 double sum(double value) {
   sum(&value, 1);
   return value;
@@ -115,6 +121,60 @@ Spread spread(double value) {
 
 void barrier() {
   if (size() > 1) MPI_Barrier(MPI_COMM_WORLD);
+}
+
+std::vector<KeyedValue> deliver(const std::vector<KeyedValue>& items, const std::vector<int>& to) {
+  if (size() == 1) return items;
+  const int n_ranks = size();
+  std::vector<int> send_counts(n_ranks, 0), recv_counts(n_ranks, 0);
+  for (int rank : to) ++send_counts[rank];
+  MPI_Alltoall(send_counts.data(), 1, MPI_INT, recv_counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  std::vector<int> send_displs(n_ranks + 1, 0), recv_displs(n_ranks + 1, 0);
+  for (int r = 0; r < n_ranks; ++r) {
+    send_displs[r + 1] = send_displs[r] + send_counts[r];
+    recv_displs[r + 1] = recv_displs[r] + recv_counts[r];
+  }
+  const auto n_received = std::size_t(recv_displs[n_ranks]);
+  std::vector<long> keys(items.size()), received_keys(n_received);
+  std::vector<double> values(items.size()), received_values(received_keys.size());
+  std::vector<int> fill(send_displs.begin(), send_displs.end() - 1);
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const int at = fill[to[i]]++;
+    keys[std::size_t(at)] = items[i].key;
+    values[std::size_t(at)] = items[i].value;
+  }
+  MPI_Alltoallv(keys.data(), send_counts.data(), send_displs.data(), MPI_LONG, received_keys.data(),
+                recv_counts.data(), recv_displs.data(), MPI_LONG, MPI_COMM_WORLD);
+  MPI_Alltoallv(values.data(), send_counts.data(), send_displs.data(), MPI_DOUBLE,
+                received_values.data(), recv_counts.data(), recv_displs.data(), MPI_DOUBLE,
+                MPI_COMM_WORLD);
+  std::vector<KeyedValue> received(received_keys.size());
+  for (std::size_t i = 0; i < received.size(); ++i) {
+    received[i] = {received_keys[i], received_values[i]};
+  }
+  return received;
+}
+
+void writeOnRoot(const std::string& text, std::ostream* out) {
+  if (size() == 1) {
+    if (out) *out << text;
+    return;
+  }
+  if (!isRoot()) {
+    const long length = long(text.size());
+    MPI_Send(&length, 1, MPI_LONG, 0, 1, MPI_COMM_WORLD);
+    MPI_Send(text.data(), int(length), MPI_CHAR, 0, 2, MPI_COMM_WORLD);
+    return;
+  }
+  if (out) *out << text;
+  std::string received;
+  for (int r = 1; r < size(); ++r) {
+    long length = 0;
+    MPI_Recv(&length, 1, MPI_LONG, r, 1, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    received.resize(std::size_t(length));
+    MPI_Recv(received.data(), int(length), MPI_CHAR, r, 2, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    if (out) *out << received;
+  }
 }
 
 int ranksOnThisMachine() {

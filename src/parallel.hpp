@@ -4,6 +4,8 @@
 // its location, totals, probes; every rank returns the same value.
 #pragma once
 
+#include <cstdint>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -19,6 +21,8 @@ inline bool isRoot() {
 
 // In-place sums over the ranks of n doubles (totals, boundary work, probes).
 void sum(double* values, int n);
+// In-place sums over the ranks of n 64-bit integers (ExactSum's digits).
+void sum(std::int64_t* values, int n);
 double sum(double value);
 double min(double value);
 double max(double value);
@@ -37,6 +41,18 @@ std::string broadcast(const std::string& text);
 // ("" if none): an error found by one rank becomes every rank's error.
 std::string firstMessage(const std::string& message);
 void barrier();
+// A number addressed by a key (a global id), for deliver().
+struct KeyedValue {
+  long key = 0;
+  double value = 0.0;
+};
+// Sends items[i] to rank to[i]; returns what this rank receives, in rank
+// order (collective; one rank: the items themselves).
+std::vector<KeyedValue> deliver(const std::vector<KeyedValue>& items, const std::vector<int>& to);
+// Writes every rank's `text` to `out` on rank 0, in rank order, one rank's
+// at a time (rank 0 never holds more than one rank's text); `out` is only
+// read on rank 0. Collective.
+void writeOnRoot(const std::string& text, std::ostream* out);
 // How many of the run's ranks share this machine's memory (1 on one rank).
 int ranksOnThisMachine();
 

@@ -86,10 +86,21 @@ struct ProblemSetup {
   double sample_seconds = 0.0;
 };
 
-// Host copies of the fields at the end of a run, for problem checks and CSVs.
+// Host copies of the fields at the end of a run, for problem checks and CSVs:
+// the whole block's cells in global order, on every rank; or, on a
+// decomposed run whose problem's checks read owned cells
+// (Problem::checks_read_owned_cells), this rank's held cells (`distributed`):
+// `owned` marks the ones it owns, `cell_global` gives their global ids, and
+// `mesh` is the rank's own (local node ids).
 struct FinalFields {
   double time = 0.0;
   int nx = 0, ny = 0, nz = 0;
+  bool distributed = false;
+  Kokkos::View<int*, HostSpace> owned;         // (distributed only)
+  Kokkos::View<long*, HostSpace> cell_global;  // (distributed only)
+  // Whether cell c is this rank's to count (every cell of whole fields).
+  bool counts(Index c) const { return !distributed || owned(c); }
+  long globalCell(Index c) const { return distributed ? cell_global(c) : long(c); }
   HostMesh mesh;
   RealView::HostMirror rho, p, e, vol;
   Vec3View::HostMirror v, x_c;
@@ -116,6 +127,10 @@ struct Problem {
   const char* probe_name = nullptr;
   // Snapshot times when the command line gives none (PROBLEMS.md), those up to t_end.
   std::vector<double> default_output_times = {};
+  // `finish` works on each rank's owned cells (FinalFields::distributed) and
+  // combines over the ranks (collective); otherwise a decomposed run gathers
+  // the whole block's fields onto every rank for it.
+  bool checks_read_owned_cells = false;
 };
 
 const std::vector<Problem>& problemRegistry();

@@ -71,6 +71,24 @@ RankCosts costsOverRanks(const Simulation& simulation, long steps_run) {
 
 namespace {
 
+// The final (or last good) fields for the problem's checks: on a decomposed
+// run the whole block's on every rank, unless the problem's checks read
+// owned cells (and the caller does not ask for them): then this rank's.
+FinalFields finalFields(const Simulation& simulation) {
+  const bool decomposed = parallel::size() > 1;
+  const bool gather = decomposed && (!simulation.problem().checks_read_owned_cells ||
+                                     simulation.options().gather_final_fields);
+  const Mesh& mesh = simulation.mesh();
+  FinalFields fields = copyFields(mesh, gather, simulation.state(), simulation.time());
+  if (decomposed && !gather) {
+    fields.distributed = true;
+    fields.owned = Kokkos::create_mirror_view_and_copy(HostSpace(), mesh.cell_owned);
+    fields.cell_global = mesh.cell_global;
+  }
+  fields.probe = simulation.loopState().probe;
+  return fields;
+}
+
 // What the loop did: counters, speed, drifts and the final (or last good) fields.
 RunResult resultOf(const Simulation& simulation) {
   RunResult result;
@@ -86,16 +104,17 @@ RunResult resultOf(const Simulation& simulation) {
   result.drift_mass = simulation.driftMass();
   result.drift_momentum = simulation.driftMomentum();
   result.drift_energy = simulation.driftEnergy();
-  result.fields =
-      copyFields(simulation.mesh(), parallel::size() > 1, simulation.state(), simulation.time());
-  result.fields.probe = simulation.loopState().probe;
+  result.fields = finalFields(simulation);
   // (after the final fields' gather, which the peak memory then includes)
   result.costs = costsOverRanks(simulation, steps_run);
-  for (Index c = 0; c < Index(result.fields.v.extent(0)); ++c) {
-    result.max_transverse_velocity =
-        std::max({result.max_transverse_velocity, std::abs(result.fields.v(c, 1)),
-                  std::abs(result.fields.v(c, 2))});
+  const FinalFields& fields = result.fields;
+  for (Index c = 0; c < Index(fields.v.extent(0)); ++c) {
+    if (!fields.counts(c)) continue;
+    result.max_transverse_velocity = std::max(
+        {result.max_transverse_velocity, std::abs(fields.v(c, 1)), std::abs(fields.v(c, 2))});
   }
+  if (fields.distributed)
+    result.max_transverse_velocity = parallel::max(result.max_transverse_velocity);
   return result;
 }
 

@@ -24,6 +24,9 @@ struct RunOptions {
   bool write_files = true;           // false: no output directory at all (benchmarks, tests)
   long checkpoint_every = 0;         // checkpoint.h5 in the output directory every N steps
   std::string restart_file;          // continue the run of this checkpoint
+  // A decomposed run's RunResult::fields: the whole block's on every rank
+  // even when the problem's checks need only the owned cells (tests compare them).
+  bool gather_final_fields = false;
 };
 
 struct RunResult {

@@ -145,7 +145,8 @@ void writeConservation(JsonWriter& json, const Simulation& simulation, const Run
 
 void writeInterfaces(JsonWriter& json, const Simulation& simulation, const RunResult& result) {
   const int n_materials = simulation.state().n_materials;
-  if (n_materials <= 1) return;
+  // (measured on the whole block's fields: not where a problem's checks read owned cells)
+  if (n_materials <= 1 || result.fields.distributed) return;
   json.beginObject("interfaces");
   for (int k = 0; k < n_materials; ++k) {
     const InterfaceMeasure measure = measureInterface(result.fields, k);

@@ -399,6 +399,51 @@ TEST(Snapshots, FileContentsDoNotDependOnTheRankCount) {
   EXPECT_EQ(text_a.str(), text_b.str());
 }
 
+// The lines of a text file, sorted (a CSV whose rows come rank by rank).
+std::vector<std::string> sortedLines(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  std::sort(lines.begin(), lines.end());
+  return lines;
+}
+
+// sedov's checks read each rank's owned cells, never the whole block's
+// fields (Problem::checks_read_owned_cells): the same values as on one rank,
+// to the bit (exact bin sums, the symmetry pairs sent to their owners), and
+// the same CSVs (radial.csv's rows come rank by rank).
+TEST(Checks, FromOwnedCellsAreTheSingleRankChecks) {
+  const std::string dir = sharedScratch("owned_checks");
+  RunOptions options = testing::problemOptions("sedov", {"t_end=0.3"}, 0.5);
+  options.gather_final_fields = false;
+  options.write_files = true;
+  options.output_dir = dir + "/ranks";
+  const RunResult decomposed = runProblem(options);
+  ASSERT_FALSE(decomposed.failed) << decomposed.failure;
+  EXPECT_TRUE(decomposed.fields.distributed);
+  EXPECT_LT(decomposed.fields.rho.extent(0), std::size_t(decomposed.cells));
+  if (!parallel::isRoot()) return;
+  parallel::SerialScope serial;
+  RunOptions one_rank = options;
+  one_rank.output_dir = dir + "/one";
+  const RunResult reference = runProblem(one_rank);
+  ASSERT_EQ(decomposed.checks.size(), reference.checks.size());
+  for (std::size_t i = 0; i < reference.checks.size(); ++i) {
+    EXPECT_EQ(decomposed.checks[i].name, reference.checks[i].name);
+    EXPECT_EQ(decomposed.checks[i].value, reference.checks[i].value) << reference.checks[i].name;
+  }
+  EXPECT_EQ(decomposed.max_transverse_velocity, reference.max_transverse_velocity);
+  for (const char* csv : {"slice_z.csv", "radial.csv"}) {
+    const auto lines = sortedLines(dir + "/ranks/" + csv);
+    EXPECT_GT(lines.size(), 1u) << csv;
+    EXPECT_EQ(lines, sortedLines(dir + "/one/" + csv)) << csv;
+  }
+  std::ifstream a(dir + "/ranks/slice_z.csv"), b(dir + "/one/slice_z.csv");
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(a), {}),
+            std::string(std::istreambuf_iterator<char>(b), {}))
+      << "slice_z.csv in cell order";
+}
+
 TEST(Restart, ContinuesBitForBitOnTheSameAndOnOneRank) {
   const std::string dir = sharedScratch("restart");
   RunOptions options = testing::problemOptions("taylor", {"t_end=2e-4"}, 0.25, "remap");

@@ -108,7 +108,8 @@ inline UniformBlock uniformBlock(const BlockSpec& block, const SideBoundaries& s
   return uniform;
 }
 
-// Run options of a built-in problem with `key=value` overrides; no files.
+// Run options of a built-in problem with `key=value` overrides; no files;
+// the final fields of the whole block on every rank (the tests compare them).
 inline RunOptions problemOptions(const std::string& problem,
                                  const std::vector<std::string>& assignments = {},
                                  double scale = 1.0, const std::string& mode = "lagrange") {
@@ -120,6 +121,7 @@ inline RunOptions problemOptions(const std::string& problem,
   options.config.scaleCellCounts(scale);
   options.quiet = true;
   options.write_files = false;
+  options.gather_final_fields = true;
   return options;
 }
 
