@@ -239,6 +239,8 @@ extern const Problem kBeamProblem = {
     setupBeam,
     finishBeam,
     tipDisplacement,
-    "tip_displacement_y"};
+    "tip_displacement_y",
+    {},
+    true};  // the checks read the probe's record only, no cell (no gather of the whole fields)
 
 }  // namespace lagremap

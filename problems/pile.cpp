@@ -69,11 +69,16 @@ std::vector<Check> finishPile(const Config& config, const FinalFields& fields,
       break;
     }
   }
-  double lateral = 0.0, axial = 0.0;
+  double lateral = 0.0, axial = 0.0;  // over the (owned) cells, then the ranks
   const Index n_cells = Index(fields.rho.extent(0));
   for (Index cell = 0; cell < n_cells; ++cell) {
+    if (!fields.counts(cell)) continue;
     lateral = std::max({lateral, std::abs(fields.v(cell, 1)), std::abs(fields.v(cell, 2))});
     axial = std::max(axial, std::abs(fields.v(cell, 0)));
+  }
+  if (fields.distributed) {
+    lateral = parallel::max(lateral);
+    axial = parallel::max(axial);
   }
   std::ofstream csv;
   if (!out_dir.empty()) csv.open(out_dir + "/pile_wall_stress.csv");
@@ -122,6 +127,8 @@ extern const Problem kPileProblem = {
     setupPile,
     finishPile,
     wallStress,
-    "wall_sigma_xx"};
+    "wall_sigma_xx",
+    {},
+    true};  // the checks read owned cells (no gather of the whole fields)
 
 }  // namespace lagremap

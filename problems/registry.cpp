@@ -1,5 +1,9 @@
 #include <algorithm>
 #include <cmath>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "../kernels/hex.hpp"
 #include "../src/boundary_keys.hpp"
@@ -351,6 +355,24 @@ std::vector<AlphaCrossing> alphaCrossingsAlongRay(const FinalFields& fields, int
     a0 = a1;
   }
   return crossings;
+}
+
+void writeRowsInCellOrder(const std::string& keyed_lines, bool distributed, std::ostream& out) {
+  std::ostringstream gathered;
+  if (distributed) {
+    parallel::writeOnRoot(keyed_lines, &gathered);
+    if (!parallel::isRoot()) return;
+  } else {
+    gathered << keyed_lines;
+  }
+  std::vector<std::pair<long, std::string>> lines;
+  std::istringstream in(gathered.str());
+  for (std::string line; std::getline(in, line);) {
+    const std::size_t space = line.find(' ');
+    lines.emplace_back(std::stol(line.substr(0, space)), line.substr(space + 1));
+  }
+  std::sort(lines.begin(), lines.end());
+  for (const auto& line : lines) out << line.second << '\n';
 }
 
 ProblemSetup setupBlock(const Config& config, const Vec3& lo, const Vec3& hi,

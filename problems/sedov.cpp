@@ -198,8 +198,7 @@ OctantSymmetry octantSymmetry(const FinalFields& fields) {
 
 // slice_z.csv: the cell layer at z = 0 with the corners of each cell's bottom
 // face (VTK nodes 0-3), so the map shows the Lagrangian cells as they are.
-// Ranks that hold their owned cells only send their rows of the layer to
-// rank 0, which writes them in cell order.
+// (With distributed fields rank 0 gathers the layer's rows: writeRowsInCellOrder.)
 void writeSliceZ(const std::string& out_dir, const FinalFields& fields) {
   const long layer = long(fields.nx) * fields.ny;
   std::ostringstream rows;
@@ -207,8 +206,7 @@ void writeSliceZ(const std::string& out_dir, const FinalFields& fields) {
   for (Index c = 0; c < Index(fields.rho.extent(0)); ++c) {
     const long g = fields.globalCell(c);
     if (g >= layer || !fields.counts(c)) continue;
-    if (fields.distributed) rows << g << ' ';
-    rows << fields.x_c(c, 0) << ',' << fields.x_c(c, 1) << ',' << fields.rho(c) << ','
+    rows << g << ' ' << fields.x_c(c, 0) << ',' << fields.x_c(c, 1) << ',' << fields.rho(c) << ','
          << fields.p(c) << ','
          << std::sqrt(fields.v(c, 0) * fields.v(c, 0) + fields.v(c, 1) * fields.v(c, 1));
     for (int p = 0; p < 4; ++p) {
@@ -220,21 +218,7 @@ void writeSliceZ(const std::string& out_dir, const FinalFields& fields) {
   std::ofstream slice;
   if (!out_dir.empty()) slice.open(out_dir + "/slice_z.csv");
   slice << "x,y,rho,p,speed,x0,y0,x1,y1,x2,y2,x3,y3\n";
-  if (!fields.distributed) {
-    slice << rows.str();
-    return;
-  }
-  std::ostringstream gathered;  // (the layer only: nx ny rows on rank 0)
-  parallel::writeOnRoot(rows.str(), &gathered);
-  if (out_dir.empty()) return;
-  std::vector<std::pair<long, std::string>> lines;
-  std::istringstream in(gathered.str());
-  for (std::string line; std::getline(in, line);) {
-    const std::size_t space = line.find(' ');
-    lines.emplace_back(std::stol(line.substr(0, space)), line.substr(space + 1));
-  }
-  std::sort(lines.begin(), lines.end());
-  for (const auto& line : lines) slice << line.second << '\n';
+  writeRowsInCellOrder(rows.str(), fields.distributed, slice);
 }
 
 std::vector<Check> finishSedov(const Config& config, const FinalFields& fields,

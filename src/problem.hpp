@@ -198,6 +198,11 @@ struct MaterialRegions {
 // mass-weighted mean of the samples' velocities (momentum conserved).
 void fillMaterialRegions(ProblemSetup& setup, const MaterialRegions& regions,
                          int samples_per_edge = 8);
+// CSV rows of some cells (a row or a layer of the block: few), each line
+// "global_id row" in `keyed_lines`: written to `out` on rank 0 in cell
+// order, without the ids. With distributed fields every rank sends its lines
+// to rank 0 (collective); `out` is only written on rank 0.
+void writeRowsInCellOrder(const std::string& keyed_lines, bool distributed, std::ostream& out);
 // Position along +x where the volume fraction of `material` falls through 0.5
 // on the row of cells nearest to the line y = y_line, z = mid-thickness
 // (linear interpolation between cell centroids), or NAN if it never does.

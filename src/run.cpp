@@ -6,6 +6,8 @@
 #include <iomanip>
 #include <memory>
 
+#include "../kernels/hex.hpp"
+#include "exact_sum.hpp"
 #include "outputs.hpp"
 #include "parallel.hpp"
 #include "simulation.hpp"
@@ -89,6 +91,62 @@ FinalFields finalFields(const Simulation& simulation) {
   return fields;
 }
 
+// The neighbour of cell c of `fields` across face f (VTK order: x-, x+, y-,
+// y+, z-, z+), -1 on the boundary: by the block's formula for the whole
+// block's fields, from the rank's mesh for its own.
+Index fieldsNeighbor(const FinalFields& fields, const CellFacesView::HostMirror& neighbors, Index c,
+                     int f) {
+  if (fields.distributed) return neighbors(c, f);
+  const int n[3] = {fields.nx, fields.ny, fields.nz};
+  const Index stride[3] = {1, Index(fields.nx), Index(fields.nx) * fields.ny};
+  const int axis = f / 2;
+  const int index = int((c / stride[axis]) % n[axis]);
+  if (f % 2 == 0) return index > 0 ? c - stride[axis] : -1;
+  return index < n[axis] - 1 ? c + stride[axis] : -1;
+}
+
+// Collective when the fields are distributed: each interior face is counted
+// by the owner of its cell of lower global id (a neighbour may be a ghost,
+// whose alpha the last exchange gave it).
+InterfaceMeasure measureInterface(const Mesh& mesh, const FinalFields& fields, int k) {
+  CellFacesView::HostMirror neighbors;
+  if (fields.distributed) {
+    neighbors = CellFacesView::HostMirror("lagremap::mesh::cell_neighbors", mesh.n_cells);
+    Kokkos::deep_copy(neighbors, mesh.cell_neighbors);
+  }
+  double mixed = 0.0;
+  ExactSum smeared, area;
+  for (Index c = 0; c < Index(fields.alpha.extent(0)); ++c) {
+    if (!fields.counts(c)) continue;
+    const double alpha = fields.alpha(c, k);
+    mixed += alpha > 0.01 && alpha < 0.99;
+    smeared += 4.0 * alpha * (1.0 - alpha) * fields.vol(c);
+    Vec3 x[8];
+    for (int p = 0; p < 8; ++p) x[p] = loadVec3(fields.mesh.x_n, fields.mesh.cell_nodes(c, p));
+    for (int f = 0; f < 6; ++f) {
+      const Index nb = fieldsNeighbor(fields, neighbors, c, f);
+      if (nb < 0 || fields.globalCell(nb) <= fields.globalCell(c) ||
+          (alpha - 0.5) * (fields.alpha(nb, k) - 0.5) >= 0.0)
+        continue;
+      Vec3 q[4], w[4];
+      hex::faceNodes(x, f, q);
+      area += norm(hex::faceCornerVectors(q, w));
+    }
+  }
+  if (fields.distributed) {
+    std::vector<ExactSum> sums{smeared, area};
+    ExactSum::sumOverRanks(sums);
+    smeared = sums[0];
+    area = sums[1];
+    mixed = parallel::sum(mixed);
+  }
+  InterfaceMeasure measure;
+  measure.mixed_cells = long(mixed);
+  measure.area = area.value();
+  measure.smeared_width = measure.area > 0.0 ? smeared.value() / measure.area : 0.0;
+  return measure;
+}
+
 // What the loop did: counters, speed, drifts and the final (or last good) fields.
 RunResult resultOf(const Simulation& simulation) {
   RunResult result;
@@ -115,6 +173,10 @@ RunResult resultOf(const Simulation& simulation) {
   }
   if (fields.distributed)
     result.max_transverse_velocity = parallel::max(result.max_transverse_velocity);
+  const int n_materials = simulation.state().n_materials;
+  for (int k = 0; n_materials > 1 && k < n_materials; ++k) {
+    result.interfaces.push_back(measureInterface(simulation.mesh(), fields, k));
+  }
   return result;
 }
 

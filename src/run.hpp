@@ -29,6 +29,16 @@ struct RunOptions {
   bool gather_final_fields = false;
 };
 
+// Sharpness of material k's interface in the final state: mixed cells (0.01
+// < alpha < 0.99), the area of the alpha = 1/2 surface (interior faces
+// across which alpha crosses 1/2), and the smeared width sum 4 alpha (1 -
+// alpha) v / area (one cell at alpha = 1/2 per cell of interface gives the
+// cell size). Exact sums: the same bits on any rank count.
+struct InterfaceMeasure {
+  long mixed_cells = 0;
+  double area = 0.0, smeared_width = 0.0;
+};
+
 struct RunResult {
   long steps = 0;
   double time = 0.0;
@@ -40,8 +50,9 @@ struct RunResult {
   std::vector<Check> checks;
   double drift_mass = 0.0, drift_momentum = 0.0, drift_energy = 0.0;
   double max_transverse_velocity = 0.0;
-  FinalFields fields;  // host copies of the final (or last good) state
-  RankCosts costs;     // memory, set-up time and halo traffic over the ranks
+  FinalFields fields;                        // host copies of the final (or last good) state
+  std::vector<InterfaceMeasure> interfaces;  // per material (multi-material runs)
+  RankCosts costs;                           // memory, set-up time and halo traffic over the ranks
   bool checksPass() const;
 };
 

@@ -10,47 +10,6 @@
 namespace lagremap {
 namespace {
 
-// Sharpness of material k's interface in the final state : mixed cells (0.01 < alpha < 0.99), the
-// area of the alpha = 1/2 surface (interior faces across which alpha crosses 1/2), and the smeared
-// width sum 4 alpha (1 - alpha) v / area (one cell at alpha = 1/2 per cell of interface gives the
-// cell size).
-struct InterfaceMeasure {
-  long mixed_cells = 0;
-  double area = 0.0, smeared_width = 0.0;
-};
-
-// The face neighbour of cell c of the fields' block across face f (VTK
-// order: x-, x+, y-, y+, z-, z+), -1 on the boundary.
-Index blockNeighbor(const FinalFields& fields, Index c, int f) {
-  const int n[3] = {fields.nx, fields.ny, fields.nz};
-  const Index stride[3] = {1, Index(fields.nx), Index(fields.nx) * fields.ny};
-  const int axis = f / 2;
-  const int index = int((c / stride[axis]) % n[axis]);
-  if (f % 2 == 0) return index > 0 ? c - stride[axis] : -1;
-  return index < n[axis] - 1 ? c + stride[axis] : -1;
-}
-
-InterfaceMeasure measureInterface(const FinalFields& fields, int k) {
-  InterfaceMeasure measure;
-  double smeared = 0.0;
-  for (Index c = 0; c < Index(fields.alpha.extent(0)); ++c) {
-    const double alpha = fields.alpha(c, k);
-    measure.mixed_cells += alpha > 0.01 && alpha < 0.99;
-    smeared += 4.0 * alpha * (1.0 - alpha) * fields.vol(c);
-    Vec3 x[8];
-    for (int p = 0; p < 8; ++p) x[p] = loadVec3(fields.mesh.x_n, fields.mesh.cell_nodes(c, p));
-    for (int f = 0; f < 6; ++f) {
-      const Index nb = blockNeighbor(fields, c, f);
-      if (nb <= c || (alpha - 0.5) * (fields.alpha(nb, k) - 0.5) >= 0.0) continue;
-      Vec3 q[4], w[4];
-      hex::faceNodes(x, f, q);
-      measure.area += norm(hex::faceCornerVectors(q, w));
-    }
-  }
-  measure.smeared_width = measure.area > 0.0 ? smeared / measure.area : 0.0;
-  return measure;
-}
-
 void writeRunAndSpeed(JsonWriter& json, const Simulation& simulation, const RunResult& result) {
   const Config& config = simulation.options().config;
   const Mesh& mesh = simulation.mesh();
@@ -144,12 +103,11 @@ void writeConservation(JsonWriter& json, const Simulation& simulation, const Run
 }
 
 void writeInterfaces(JsonWriter& json, const Simulation& simulation, const RunResult& result) {
-  const int n_materials = simulation.state().n_materials;
-  // (measured on the whole block's fields: not where a problem's checks read owned cells)
-  if (n_materials <= 1 || result.fields.distributed) return;
+  const int n_materials = int(result.interfaces.size());
+  if (n_materials <= 1) return;
   json.beginObject("interfaces");
   for (int k = 0; k < n_materials; ++k) {
-    const InterfaceMeasure measure = measureInterface(result.fields, k);
+    const InterfaceMeasure& measure = result.interfaces[std::size_t(k)];
     json.beginObject("material_" + std::to_string(k))
         .value("solid", simulation.materials()[k].strength != StrengthKind::None)
         .value("mixed_cells", measure.mixed_cells)

@@ -408,40 +408,64 @@ std::vector<std::string> sortedLines(const std::string& path) {
   return lines;
 }
 
-// sedov's checks read each rank's owned cells, never the whole block's
-// fields (Problem::checks_read_owned_cells): the same values as on one rank,
-// to the bit (exact bin sums, the symmetry pairs sent to their owners), and
-// the same CSVs (radial.csv's rows come rank by rank).
+// Problems whose checks read each rank's owned cells, never the whole
+// block's fields (Problem::checks_read_owned_cells): the same check values as
+// on one rank, to the bit (exact sums, maxima, symmetry pairs sent to their
+// owners), the same interface measures (beam remap: two materials), and the
+// same CSVs (rows of a layer in cell order; radial.csv's rank by rank).
 TEST(Checks, FromOwnedCellsAreTheSingleRankChecks) {
-  const std::string dir = sharedScratch("owned_checks");
-  RunOptions options = testing::problemOptions("sedov", {"t_end=0.3"}, 0.5);
-  options.gather_final_fields = false;
-  options.write_files = true;
-  options.output_dir = dir + "/ranks";
-  const RunResult decomposed = runProblem(options);
-  ASSERT_FALSE(decomposed.failed) << decomposed.failure;
-  EXPECT_TRUE(decomposed.fields.distributed);
-  EXPECT_LT(decomposed.fields.rho.extent(0), std::size_t(decomposed.cells));
-  if (!parallel::isRoot()) return;
-  parallel::SerialScope serial;
-  RunOptions one_rank = options;
-  one_rank.output_dir = dir + "/one";
-  const RunResult reference = runProblem(one_rank);
-  ASSERT_EQ(decomposed.checks.size(), reference.checks.size());
-  for (std::size_t i = 0; i < reference.checks.size(); ++i) {
-    EXPECT_EQ(decomposed.checks[i].name, reference.checks[i].name);
-    EXPECT_EQ(decomposed.checks[i].value, reference.checks[i].value) << reference.checks[i].name;
+  struct OwnedCase {
+    Case run;
+    std::vector<std::string> csv_in_cell_order, csv_any_order;
+  };
+  const std::vector<OwnedCase> owned_cases = {
+      {{"sedov", "lagrange", {"t_end=0.3"}, 0.5}, {"slice_z.csv"}, {"radial.csv"}},
+      {{"sod", "lagrange", {"t_end=0.1"}, 0.25}, {"sod_profile.csv"}, {}},
+      {{"pile", "lagrange", {"t_end=1e-3"}, 1.0}, {"pile_wall_stress.csv"}, {}},
+      {{"beam", "remap", {"t_end=2e-6"}, 0.5}, {"beam_tip.csv"}, {}}};
+  for (const OwnedCase& c : owned_cases) {
+    const std::string dir = sharedScratch(std::string("owned_checks_") + c.run.problem);
+    RunOptions options =
+        testing::problemOptions(c.run.problem, c.run.assignments, c.run.scale, c.run.mode);
+    ASSERT_TRUE(findProblem(c.run.problem).checks_read_owned_cells) << c.run.problem;
+    options.gather_final_fields = false;
+    options.write_files = true;
+    options.output_dir = dir + "/ranks";
+    const RunResult decomposed = runProblem(options);
+    ASSERT_FALSE(decomposed.failed) << decomposed.failure;
+    EXPECT_TRUE(decomposed.fields.distributed);
+    EXPECT_LT(decomposed.fields.rho.extent(0), std::size_t(decomposed.cells));
+    if (!parallel::isRoot()) continue;
+    parallel::SerialScope serial;
+    RunOptions one_rank = options;
+    one_rank.output_dir = dir + "/one";
+    const RunResult reference = runProblem(one_rank);
+    ASSERT_EQ(decomposed.checks.size(), reference.checks.size()) << c.run.problem;
+    for (std::size_t i = 0; i < reference.checks.size(); ++i) {
+      const double a = decomposed.checks[i].value, b = reference.checks[i].value;
+      EXPECT_EQ(decomposed.checks[i].name, reference.checks[i].name);
+      EXPECT_TRUE(a == b || (std::isnan(a) && std::isnan(b)))
+          << c.run.problem << " " << reference.checks[i].name << " " << a << " " << b;
+    }
+    EXPECT_EQ(decomposed.max_transverse_velocity, reference.max_transverse_velocity);
+    ASSERT_EQ(decomposed.interfaces.size(), reference.interfaces.size()) << c.run.problem;
+    for (std::size_t k = 0; k < reference.interfaces.size(); ++k) {
+      EXPECT_EQ(decomposed.interfaces[k].mixed_cells, reference.interfaces[k].mixed_cells);
+      EXPECT_EQ(decomposed.interfaces[k].area, reference.interfaces[k].area);
+      EXPECT_EQ(decomposed.interfaces[k].smeared_width, reference.interfaces[k].smeared_width);
+    }
+    for (const std::string& csv : c.csv_in_cell_order) {
+      std::ifstream a(dir + "/ranks/" + csv), b(dir + "/one/" + csv);
+      const std::string text(std::istreambuf_iterator<char>(a), {});
+      EXPECT_GT(std::count(text.begin(), text.end(), '\n'), 1) << csv;
+      EXPECT_EQ(text, std::string(std::istreambuf_iterator<char>(b), {})) << csv;
+    }
+    for (const std::string& csv : c.csv_any_order) {
+      const auto lines = sortedLines(dir + "/ranks/" + csv);
+      EXPECT_GT(lines.size(), 1u) << csv;
+      EXPECT_EQ(lines, sortedLines(dir + "/one/" + csv)) << csv;
+    }
   }
-  EXPECT_EQ(decomposed.max_transverse_velocity, reference.max_transverse_velocity);
-  for (const char* csv : {"slice_z.csv", "radial.csv"}) {
-    const auto lines = sortedLines(dir + "/ranks/" + csv);
-    EXPECT_GT(lines.size(), 1u) << csv;
-    EXPECT_EQ(lines, sortedLines(dir + "/one/" + csv)) << csv;
-  }
-  std::ifstream a(dir + "/ranks/slice_z.csv"), b(dir + "/one/slice_z.csv");
-  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(a), {}),
-            std::string(std::istreambuf_iterator<char>(b), {}))
-      << "slice_z.csv in cell order";
 }
 
 TEST(Restart, ContinuesBitForBitOnTheSameAndOnOneRank) {
