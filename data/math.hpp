@@ -63,15 +63,18 @@ struct VertexVectors {
     z[p] = v.z;
   }
 };
-// out_p = dot(g, d_p) at every vertex p.
+// out_p = dot(g, d_p) at every vertex p < kVertices (4: a z prism's bottom
+// vertices, whose top ones repeat them).
+template <int kVertices = kHexVertices>
 KOKKOS_INLINE_FUNCTION void dotEach(const Vec3& g, const VertexVectors& d, double out[8]) {
   LAGREMAP_LANES
-  for (int p = 0; p < kHexVertices; ++p) out[p] = g.x * d.x[p] + g.y * d.y[p] + g.z * d.z[p];
+  for (int p = 0; p < kVertices; ++p) out[p] = g.x * d.x[p] + g.y * d.y[p] + g.z * d.z[p];
 }
-// out_p = dot(a_p, b_p) at every vertex p.
+// out_p = dot(a_p, b_p) at every vertex p < kVertices.
+template <int kVertices = kHexVertices>
 KOKKOS_INLINE_FUNCTION void dotEach(const VertexVectors& a, const VertexVectors& b, double out[8]) {
   LAGREMAP_LANES
-  for (int p = 0; p < kHexVertices; ++p) {
+  for (int p = 0; p < kVertices; ++p) {
     out[p] = a.x[p] * b.x[p] + a.y[p] * b.y[p] + a.z[p] * b.z[p];
   }
 }

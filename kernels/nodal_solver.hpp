@@ -127,26 +127,28 @@ KOKKOS_FORCEINLINE_FUNCTION void gatherStencil(const State& s, const Neighbors& 
 // a near-vacuum gas cannot afford in its dissipation (docs/method.md §2.5).
 // Squared norms compared: one square root per cell. The vertices' values
 // are computed in lanes (VertexVectors), the same numbers as vertex by vertex.
+// kVertices = 4: a z prism's bottom vertices only (computeCornerTerms).
+template <int kVertices>
 KOKKOS_FORCEINLINE_FUNCTION void limitedNodeVelocities(const CornerStencil& st, const SymMat3& inv,
                                                        const VertexVectors& offsets,
                                                        const Vec3& v_cell, double sound_speed,
                                                        bool solid, VertexVectors& v_node) {
   const Vec3 grad_v[3] = {inv * st.rhs_v[0], inv * st.rhs_v[1], inv * st.rhs_v[2]};
   VertexVectors dv_node;
-  dotEach(grad_v[0], offsets, dv_node.x);
-  dotEach(grad_v[1], offsets, dv_node.y);
-  dotEach(grad_v[2], offsets, dv_node.z);
+  dotEach<kVertices>(grad_v[0], offsets, dv_node.x);
+  dotEach<kVertices>(grad_v[1], offsets, dv_node.y);
+  dotEach<kVertices>(grad_v[2], offsets, dv_node.z);
   double length2[kHexVertices];
-  dotEach(dv_node, dv_node, length2);
-  const double phi_v = solid ? projectedLimiter<true, true>(st.dv_nb, dv_node, length2)
-                             : projectedLimiter<false, true>(st.dv_nb, dv_node, length2);
+  dotEach<kVertices>(dv_node, dv_node, length2);
+  const double phi_v = solid ? projectedLimiter<true, true, kVertices>(st.dv_nb, dv_node, length2)
+                             : projectedLimiter<false, true, kVertices>(st.dv_nb, dv_node, length2);
   double longest2 = 0.0;
-  for (int p = 0; p < kHexVertices; ++p) longest2 = length2[p] > longest2 ? length2[p] : longest2;
+  for (int p = 0; p < kVertices; ++p) longest2 = length2[p] > longest2 ? length2[p] : longest2;
   const double phi = phi_v * phi_v * longest2 > sound_speed * sound_speed
                          ? sound_speed / math::sqrt(longest2)
                          : phi_v;
   LAGREMAP_LANES
-  for (int p = 0; p < kHexVertices; ++p) {
+  for (int p = 0; p < kVertices; ++p) {
     v_node.x[p] = v_cell.x + phi * dv_node.x[p];
     v_node.y[p] = v_cell.y + phi * dv_node.y[p];
     v_node.z[p] = v_cell.z + phi * dv_node.z[p];
@@ -174,6 +176,7 @@ struct VertexTensors {
 // factor (pulled-back jumps, projectedLimiter with the plateau guard) and the
 // acoustic bound |d sigma| <= rho aL^2; the unlimited excursions G d_p give
 // both the node values and the limiter's lengths.
+template <int kVertices>
 KOKKOS_FORCEINLINE_FUNCTION void limitedNodeStresses(const CornerStencil& st, const SymMat3& inv,
                                                      const VertexVectors& offsets,
                                                      const SymMat3& sigma_cell, double stress_scale,
@@ -181,18 +184,18 @@ KOKKOS_FORCEINLINE_FUNCTION void limitedNodeStresses(const CornerStencil& st, co
   Vec3 grad_sigma[6];
   for (int i = 0; i < 6; ++i) grad_sigma[i] = inv * st.rhs_sigma[i];
   VertexTensors excursion;
-  for (int i = 0; i < 6; ++i) dotEach(grad_sigma[i], offsets, excursion.c[i]);
+  for (int i = 0; i < 6; ++i) dotEach<kVertices>(grad_sigma[i], offsets, excursion.c[i]);
   double length2[kHexVertices], largest2 = 0.0;
   LAGREMAP_LANES
-  for (int p = 0; p < kHexVertices; ++p) {  // ddot(excursion_p, excursion_p)
+  for (int p = 0; p < kVertices; ++p) {  // ddot(excursion_p, excursion_p)
     const double(&e)[6][kHexVertices] = excursion.c;
     length2[p] = e[0][p] * e[0][p] + e[1][p] * e[1][p] + e[2][p] * e[2][p] +
                  2.0 * (e[3][p] * e[3][p] + e[4][p] * e[4][p] + e[5][p] * e[5][p]);
   }
-  for (int p = 0; p < kHexVertices; ++p) largest2 = length2[p] > largest2 ? length2[p] : largest2;
+  for (int p = 0; p < kVertices; ++p) largest2 = length2[p] > largest2 ? length2[p] : largest2;
   Vec3 pulled[6];
   pullBack(grad_sigma, st.dsigma_nb, pulled);
-  double phi_sigma = projectedLimiter<true, false>(pulled, offsets, length2);
+  double phi_sigma = projectedLimiter<true, false, kVertices>(pulled, offsets, length2);
   if (phi_sigma * phi_sigma * largest2 > stress_scale * stress_scale) {
     phi_sigma = stress_scale / math::sqrt(largest2);
   }
@@ -200,7 +203,7 @@ KOKKOS_FORCEINLINE_FUNCTION void limitedNodeStresses(const CornerStencil& st, co
                           sigma_cell.xy, sigma_cell.yz, sigma_cell.xz};
   for (int i = 0; i < 6; ++i) {
     LAGREMAP_LANES
-    for (int p = 0; p < kHexVertices; ++p) {
+    for (int p = 0; p < kVertices; ++p) {
       sigma_node.c[i][p] = cell[i] + phi_sigma * excursion.c[i][p];
     }
   }
@@ -209,16 +212,17 @@ KOKKOS_FORCEINLINE_FUNCTION void limitedNodeStresses(const CornerStencil& st, co
 // A fluid's node pressures: Barth-Jespersen in its two-division form (the
 // same phi as projectedLimiter<false, false>) and the acoustic bound
 // |dp| <= rho aL^2.
+template <int kVertices>
 KOKKOS_FORCEINLINE_FUNCTION void limitedNodePressures(const CornerStencil& st, const SymMat3& inv,
                                                       const VertexVectors& offsets, double p_cell,
                                                       double stress_scale,
                                                       double p_node[kHexVertices]) {
   const Vec3 grad_p = inv * st.rhs_p;
   double dp_node[kHexVertices];
-  dotEach(grad_p, offsets, dp_node);
+  dotEach<kVertices>(grad_p, offsets, dp_node);
   VertexExcursion excursion;
   double largest = 0.0;
-  for (int p = 0; p < kHexVertices; ++p) {
+  for (int p = 0; p < kVertices; ++p) {
     excursion.include(dp_node[p]);
     const double size = math::fabs(dp_node[p]);
     largest = size > largest ? size : largest;
@@ -226,7 +230,47 @@ KOKKOS_FORCEINLINE_FUNCTION void limitedNodePressures(const CornerStencil& st, c
   double phi_p = cellLimiter(excursion, p_cell, st.pb, 1.0);
   if (phi_p * largest > stress_scale) phi_p = stress_scale / largest;
   LAGREMAP_LANES
-  for (int p = 0; p < kHexVertices; ++p) p_node[p] = p_cell + phi_p * dp_node[p];
+  for (int p = 0; p < kVertices; ++p) p_node[p] = p_cell + phi_p * dp_node[p];
+}
+
+// V and sigma at the vertices p < kVertices: the limited reconstructions
+// above from the cell's stencil.
+template <int kVertices>
+KOKKOS_FORCEINLINE_FUNCTION void reconstructAtVertices(
+    const CornerStencil& stencil, const SymMat3& inv, const VertexVectors& offsets,
+    const Vec3& v_cell, double p_cell, const SymMat3& sigma_cell, double sound_speed,
+    double stress_scale, bool solid, VertexVectors& v_node, double p_node[kHexVertices],
+    VertexTensors& sigma_node) {
+  limitedNodeVelocities<kVertices>(stencil, inv, offsets, v_cell, sound_speed, solid, v_node);
+  if (solid) {
+    limitedNodeStresses<kVertices>(stencil, inv, offsets, sigma_cell, stress_scale, sigma_node);
+  } else {
+    limitedNodePressures<kVertices>(stencil, inv, offsets, p_cell, stress_scale, p_node);
+  }
+}
+
+// A z prism's top vertices (4-7) take the values of the bottom ones below
+// them (0-3). Its stencil is symmetric across the mid-plane: its in-plane
+// neighbours' centroids are on the cell's, and its two z faces are walls, so
+// the gradients' z components are exactly zero (the two mirror images' jumps
+// cancel in the least-squares right-hand sides, and the normal matrix has no
+// xz, yz entries): the top vertices' excursions g . (d_p + h e_z) are the
+// bottom ones' to the bit, and every limiter is a minimum over the same
+// numbers. Computing the bottom four alone gives the same values for half
+// the vertex lanes (performance.md §3.1).
+KOKKOS_FORCEINLINE_FUNCTION void repeatBottomVertices(bool solid, VertexVectors& v_node,
+                                                      double p_node[kHexVertices],
+                                                      VertexTensors& sigma_node) {
+  for (int p = 0; p < 4; ++p) {
+    v_node.x[p + 4] = v_node.x[p];
+    v_node.y[p + 4] = v_node.y[p];
+    v_node.z[p + 4] = v_node.z[p];
+    if (solid) {
+      for (int i = 0; i < 6; ++i) sigma_node.c[i][p + 4] = sigma_node.c[i][p];
+    } else {
+      p_node[p + 4] = p_node[p];
+    }
+  }
 }
 
 }  // namespace detail
@@ -281,12 +325,15 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
           for (int p = 0; p < kHexVertices; ++p) offsets.set(p, x[p] - centroid);
           const double sound_speed = s.aL_c(c);
           const double stress_scale = s.rho_c(c) * sound_speed * sound_speed;
-          detail::limitedNodeVelocities(stencil, inv, offsets, v_cell, sound_speed, solid, v_node);
-          if (solid) {
-            detail::limitedNodeStresses(stencil, inv, offsets, sigma_cell, stress_scale,
-                                        sigma_node);
+          if (z_prisms) {  // the bottom vertices, then the top ones repeat them
+            detail::reconstructAtVertices<4>(stencil, inv, offsets, v_cell, p_cell, sigma_cell,
+                                             sound_speed, stress_scale, solid, v_node, p_node,
+                                             sigma_node);
+            detail::repeatBottomVertices(solid, v_node, p_node, sigma_node);
           } else {
-            detail::limitedNodePressures(stencil, inv, offsets, p_cell, stress_scale, p_node);
+            detail::reconstructAtVertices<kHexVertices>(stencil, inv, offsets, v_cell, p_cell,
+                                                        sigma_cell, sound_speed, stress_scale,
+                                                        solid, v_node, p_node, sigma_node);
           }
         }
 

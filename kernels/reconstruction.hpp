@@ -135,26 +135,28 @@ KOKKOS_INLINE_FUNCTION double vertexLimiter(double delta, double center, const B
 // with directions = d_p, whose cost does not grow with its six components.
 // Every vertex's measures are computed in lanes (VertexVectors); only the
 // final minimum over the vertices is a scalar loop, in vertex order.
-template <bool plateau_guard, bool vertex_sums>
+// kVertices = 4: the bottom vertices of a z prism alone, where the top ones
+// would repeat their numbers (computeCornerTerms; the same minimum).
+template <bool plateau_guard, bool vertex_sums, int kVertices = kHexVertices>
 KOKKOS_INLINE_FUNCTION double projectedLimiter(const Vec3 jumps[6], const VertexVectors& directions,
                                                const double length2[8]) {
   // (the faces holding vertex p in the VTK hexahedron: x+ for p = 1, 2, 5, 6,
   // y+ for p & 2, z+ for p & 4)
   constexpr bool kOnXPlus[kHexVertices] = {false, true, true, false, false, true, true, false};
   double toward[kHexVertices], away[kHexVertices];
-  for (int p = 0; p < kHexVertices; ++p) toward[p] = away[p] = 0.0;
+  for (int p = 0; p < kVertices; ++p) toward[p] = away[p] = 0.0;
   double along[6][kHexVertices];
   for (int f = 0; f < 6; ++f) {
-    dotEach(jumps[f], directions, along[f]);
+    dotEach<kVertices>(jumps[f], directions, along[f]);
     LAGREMAP_LANES
-    for (int p = 0; p < kHexVertices; ++p) {
+    for (int p = 0; p < kVertices; ++p) {
       toward[p] = along[f][p] > toward[p] ? along[f][p] : toward[p];
       if (plateau_guard) away[p] = -along[f][p] > away[p] ? -along[f][p] : away[p];
     }
   }
   if (vertex_sums) {
     LAGREMAP_LANES
-    for (int p = 0; p < kHexVertices; ++p) {
+    for (int p = 0; p < kVertices; ++p) {
       const double fx = kOnXPlus[p] ? along[1][p] : along[0][p];
       const double fy = (p & 2) ? along[3][p] : along[2][p];
       const double fz = (p & 4) ? along[5][p] : along[4][p];
@@ -170,13 +172,13 @@ KOKKOS_INLINE_FUNCTION double projectedLimiter(const Vec3 jumps[6], const Vertex
   // phi (never for length2 = 0)
   double reach[kHexVertices], length2_scaled[kHexVertices];
   LAGREMAP_LANES
-  for (int p = 0; p < kHexVertices; ++p) {
+  for (int p = 0; p < kVertices; ++p) {
     const bool guarded = plateau_guard && toward[p] < away[p];
     reach[p] = guarded ? 0.5 * toward[p] * (away[p] * away[p] + toward[p] * toward[p]) : toward[p];
     length2_scaled[p] = guarded ? length2[p] * (away[p] * away[p]) : length2[p];
   }
   double limiter = 1.0;
-  for (int p = 0; p < kHexVertices; ++p) {
+  for (int p = 0; p < kVertices; ++p) {
     if (reach[p] < limiter * length2_scaled[p]) limiter = reach[p] / length2_scaled[p];
   }
   return limiter;
