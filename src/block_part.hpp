@@ -50,6 +50,15 @@ struct BlockPart {
   // order within the held box, which is increasing global id; -1 if not held.
   long localCell(int i, int j, int k) const;
   long localNode(int i, int j, int k) const;
+  long heldNodes() const {
+    return long(held.hi[0] - held.lo[0] + 1) * (held.hi[1] - held.lo[1] + 1) *
+           (held.hi[2] - held.lo[2] + 1);
+  }
+  // Global ids: cell i + nx (j + ny k), node i + (nx + 1) (j + (ny + 1) k).
+  long globalCell(int i, int j, int k) const { return i + long(dims[0]) * (j + long(dims[1]) * k); }
+  long globalNode(int i, int j, int k) const {
+    return i + long(dims[0] + 1) * (j + long(dims[1] + 1) * k);
+  }
 };
 
 // `rank`'s part of the block on n_ranks ranks (chooseProcessGrid, ownedBox).

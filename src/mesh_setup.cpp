@@ -26,40 +26,14 @@ IndexView uploadList(const std::string& label, const std::vector<T>& list) {
   return device;
 }
 
-// The box of cells a mesh holds (the whole block, or a rank's held box) and
-// the numbering of its cells and nodes: local ids in (i, j, k) order within
-// the box, so that they increase with the global ids, which are the whole
-// block's (cell i + nx (j + ny k), node i + (nx + 1) (j + (ny + 1) k)).
-struct BlockWindow {
-  std::array<int, 3> dims, lo, hi;  // the block's cells; the held box [lo, hi)
-  int along(int d) const { return hi[d] - lo[d]; }
-  Index cells() const { return Index(along(0)) * along(1) * along(2); }
-  Index nodes() const { return Index(along(0) + 1) * (along(1) + 1) * (along(2) + 1); }
-  Index localCell(int i, int j, int k) const {
-    return (i - lo[0]) + along(0) * ((j - lo[1]) + along(1) * (k - lo[2]));
+// The part of the block a mesh holds: a rank's, or the whole block as the one
+// part of a single rank (its held box is the block).
+BlockPart partOf(const BlockSpec& spec) {
+  if (!spec.part) return blockPart(spec.nx, spec.ny, spec.nz, 1, 0);
+  if (spec.part->dims != std::array<int, 3>{spec.nx, spec.ny, spec.nz}) {
+    throw std::logic_error("buildBlockMesh: the part is of another block");
   }
-  Index localNode(int i, int j, int k) const {
-    return (i - lo[0]) + (along(0) + 1) * ((j - lo[1]) + (along(1) + 1) * (k - lo[2]));
-  }
-  bool holdsNode(int i, int j, int k) const {
-    return i >= lo[0] && i <= hi[0] && j >= lo[1] && j <= hi[1] && k >= lo[2] && k <= hi[2];
-  }
-  long globalCell(int i, int j, int k) const { return i + long(dims[0]) * (j + long(dims[1]) * k); }
-  long globalNode(int i, int j, int k) const {
-    return i + long(dims[0] + 1) * (j + long(dims[1] + 1) * k);
-  }
-};
-
-BlockWindow windowOf(const BlockSpec& spec) {
-  BlockWindow window{{spec.nx, spec.ny, spec.nz}, {0, 0, 0}, {spec.nx, spec.ny, spec.nz}};
-  if (spec.part) {
-    if (spec.part->dims != window.dims) {
-      throw std::logic_error("buildBlockMesh: the part is of another block");
-    }
-    window.lo = spec.part->held.lo;
-    window.hi = spec.part->held.hi;
-  }
-  return window;
+  return *spec.part;
 }
 
 // The block's arrays on the host, filled step by step, then uploaded at once.
@@ -77,16 +51,16 @@ struct HostBlockMesh {
 // then the mapping. The draws go in the whole block's node order, three per
 // interior node, so a part's nodes are where the whole block puts them; an
 // unperturbed part visits its own nodes only.
-Vec3View::HostMirror nodeCoordinates(const BlockSpec& spec, const BlockWindow& window) {
-  Vec3View::HostMirror x_host("lagremap::mesh::x_n", window.nodes());
+Vec3View::HostMirror nodeCoordinates(const BlockSpec& spec, const BlockPart& part) {
+  Vec3View::HostMirror x_host("lagremap::mesh::x_n", part.heldNodes());
   const double dx = (spec.hi.x - spec.lo.x) / spec.nx;
   const double dy = (spec.hi.y - spec.lo.y) / spec.ny;
   const double dz = (spec.hi.z - spec.lo.z) / spec.nz;
   std::mt19937 rng(spec.seed);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   const bool perturbed = spec.perturbation > 0.0;
-  std::array<int, 3> first = window.lo, last = window.hi;  // node index ranges, inclusive
-  if (perturbed) first = {0, 0, 0}, last = window.dims;
+  std::array<int, 3> first = part.held.lo, last = part.held.hi;  // node ranges, inclusive
+  if (perturbed) first = {0, 0, 0}, last = part.dims;
   for (int k = first[2]; k <= last[2]; ++k)
     for (int j = first[1]; j <= last[1]; ++j)
       for (int i = first[0]; i <= last[0]; ++i) {
@@ -96,45 +70,46 @@ Vec3View::HostMirror nodeCoordinates(const BlockSpec& spec, const BlockWindow& w
           x += Vec3{spec.perturbation * dx * unit(rng), spec.perturbation * dy * unit(rng),
                     spec.perturbation * dz * unit(rng)};
         }
-        if (!window.holdsNode(i, j, k)) continue;
+        const long n = part.localNode(i, j, k);
+        if (n < 0) continue;
         if (spec.mapping) x = spec.mapping(x);
-        storeVec3(x_host, window.localNode(i, j, k), x);
+        storeVec3(x_host, Index(n), x);
       }
   return x_host;
 }
 
 // Cell -> node (VTK hex), cell -> neighbour and boundary side per face, for
 // the held cells; no neighbour (and no side) across a part's cut.
-void cellConnectivity(const BlockWindow& window, HostBlockMesh& host) {
-  const Index n_cells = window.cells();
+void cellConnectivity(const BlockPart& part, HostBlockMesh& host) {
+  const Index n_cells = Index(part.held.cells());
+  const CellBox& held = part.held;
   host.nodes = CellNodesView::HostMirror("lagremap::mesh::cell_nodes", n_cells);
   host.neighbors = CellFacesView::HostMirror("lagremap::mesh::cell_neighbors", n_cells);
   host.side = CellFacesView::HostMirror("lagremap::mesh::cell_face_side", n_cells);
-  for (int k = window.lo[2]; k < window.hi[2]; ++k)
-    for (int j = window.lo[1]; j < window.hi[1]; ++j)
-      for (int i = window.lo[0]; i < window.hi[0]; ++i) {
-        const Index c = window.localCell(i, j, k);
-        const Index corner_nodes[8] = {window.localNode(i, j, k),
-                                       window.localNode(i + 1, j, k),
-                                       window.localNode(i + 1, j + 1, k),
-                                       window.localNode(i, j + 1, k),
-                                       window.localNode(i, j, k + 1),
-                                       window.localNode(i + 1, j, k + 1),
-                                       window.localNode(i + 1, j + 1, k + 1),
-                                       window.localNode(i, j + 1, k + 1)};
-        for (int p = 0; p < 8; ++p) host.nodes(c, p) = corner_nodes[p];
+  for (int k = held.lo[2]; k < held.hi[2]; ++k)
+    for (int j = held.lo[1]; j < held.hi[1]; ++j)
+      for (int i = held.lo[0]; i < held.hi[0]; ++i) {
+        const Index c = Index(part.localCell(i, j, k));
+        const long corner_nodes[8] = {part.localNode(i, j, k),
+                                      part.localNode(i + 1, j, k),
+                                      part.localNode(i + 1, j + 1, k),
+                                      part.localNode(i, j + 1, k),
+                                      part.localNode(i, j, k + 1),
+                                      part.localNode(i + 1, j, k + 1),
+                                      part.localNode(i + 1, j + 1, k + 1),
+                                      part.localNode(i, j + 1, k + 1)};
+        for (int p = 0; p < 8; ++p) host.nodes(c, p) = Index(corner_nodes[p]);
         const int index[3] = {i, j, k};
         for (int axis = 0; axis < 3; ++axis) {
           int lo_neighbor[3] = {i, j, k}, hi_neighbor[3] = {i, j, k};
           --lo_neighbor[axis];
           ++hi_neighbor[axis];
-          const bool block_lo = index[axis] == 0, block_hi = index[axis] == window.dims[axis] - 1;
-          const bool held_lo = index[axis] > window.lo[axis];
-          const bool held_hi = index[axis] < window.hi[axis] - 1;
+          const bool block_lo = index[axis] == 0, block_hi = index[axis] == part.dims[axis] - 1;
+          // (-1 beyond the held box: the block's boundary, or the cut)
           host.neighbors(c, 2 * axis) =
-              held_lo ? window.localCell(lo_neighbor[0], lo_neighbor[1], lo_neighbor[2]) : -1;
+              Index(part.localCell(lo_neighbor[0], lo_neighbor[1], lo_neighbor[2]));
           host.neighbors(c, 2 * axis + 1) =
-              held_hi ? window.localCell(hi_neighbor[0], hi_neighbor[1], hi_neighbor[2]) : -1;
+              Index(part.localCell(hi_neighbor[0], hi_neighbor[1], hi_neighbor[2]));
           host.side(c, 2 * axis) = block_lo ? 2 * axis : -1;
           host.side(c, 2 * axis + 1) = block_hi ? 2 * axis + 1 : -1;
         }
@@ -411,30 +386,32 @@ void findNodeTwins(Mesh& mesh) {
 
 namespace {
 
-// A part's global ids and owners (BlockPart, computed from (i, j, k)).
-void ownPart(const BlockPart& part, const BlockWindow& window, Mesh& mesh) {
+// The mesh's global ids and owners (BlockPart, computed from (i, j, k); the
+// whole block's single part owns everything, with global id = local id).
+void ownPart(const BlockPart& part, Mesh& mesh) {
   Kokkos::View<int*, HostSpace> cell_owned("lagremap::mesh::cell_owned", mesh.n_cells);
   Kokkos::View<int*, HostSpace> node_owned("lagremap::mesh::node_owned", mesh.n_nodes);
   mesh.cell_global = Kokkos::View<long*, HostSpace>("lagremap::mesh::cell_global", mesh.n_cells);
   mesh.node_global = Kokkos::View<long*, HostSpace>("lagremap::mesh::node_global", mesh.n_nodes);
   mesh.n_owned_cells = mesh.n_owned_nodes = 0;
-  for (int k = window.lo[2]; k <= window.hi[2]; ++k)
-    for (int j = window.lo[1]; j <= window.hi[1]; ++j)
-      for (int i = window.lo[0]; i <= window.hi[0]; ++i) {
-        const Index n = window.localNode(i, j, k);
-        mesh.node_global(n) = window.globalNode(i, j, k);
+  const CellBox& held = part.held;
+  for (int k = held.lo[2]; k <= held.hi[2]; ++k)
+    for (int j = held.lo[1]; j <= held.hi[1]; ++j)
+      for (int i = held.lo[0]; i <= held.hi[0]; ++i) {
+        const Index n = Index(part.localNode(i, j, k));
+        mesh.node_global(n) = part.globalNode(i, j, k);
         node_owned(n) = part.nodeOwner(i, j, k) == part.rank;
         mesh.n_owned_nodes += node_owned(n);
-        if (i == window.hi[0] || j == window.hi[1] || k == window.hi[2]) continue;
-        const Index c = window.localCell(i, j, k);
-        mesh.cell_global(c) = window.globalCell(i, j, k);
+        if (i == held.hi[0] || j == held.hi[1] || k == held.hi[2]) continue;
+        const Index c = Index(part.localCell(i, j, k));
+        mesh.cell_global(c) = part.globalCell(i, j, k);
         cell_owned(c) = part.cellOwner(i, j, k) == part.rank;
         mesh.n_owned_cells += cell_owned(c);
       }
   upload(cell_owned, mesh.cell_owned);
   upload(node_owned, mesh.node_owned);
-  mesh.n_global_cells = long(window.dims[0]) * window.dims[1] * window.dims[2];
-  mesh.n_global_nodes = long(window.dims[0] + 1) * (window.dims[1] + 1) * (window.dims[2] + 1);
+  mesh.n_global_cells = long(part.dims[0]) * part.dims[1] * part.dims[2];
+  mesh.n_global_nodes = long(part.dims[0] + 1) * (part.dims[1] + 1) * (part.dims[2] + 1);
 }
 
 }  // namespace
@@ -443,49 +420,30 @@ Mesh buildBlockMesh(const BlockSpec& spec, const SideBoundaries& boundaries) {
   if (spec.nx < 1 || spec.ny < 1 || spec.nz < 1) {
     throw std::invalid_argument("mesh needs at least one cell in each direction");
   }
-  const BlockWindow window = windowOf(spec);
+  const BlockPart part = partOf(spec);
   Mesh mesh;
   mesh.nx = spec.nx;
   mesh.ny = spec.ny;
   mesh.nz = spec.nz;
   // (local ids, and corner ids 8 c + p, are 32-bit; global ids are long)
-  const long n_nodes = long(window.along(0) + 1) * (window.along(1) + 1) * (window.along(2) + 1);
+  const long n_nodes = part.heldNodes();
   if (n_nodes >= (1L << 31) / 8) {
     throw std::invalid_argument("mesh too large for 32-bit indices on one rank (use more ranks)");
   }
-  mesh.n_nodes = window.nodes();
-  mesh.n_cells = window.cells();
+  mesh.n_nodes = Index(n_nodes);
+  mesh.n_cells = Index(part.held.cells());
 
   HostBlockMesh host;
-  host.x = nodeCoordinates(spec, window);
-  cellConnectivity(window, host);
+  host.x = nodeCoordinates(spec, part);
+  cellConnectivity(part, host);
   host.neighbor_face = neighborFaces(host.nodes, host.neighbors, mesh.n_cells);
   nodeCorners(host.nodes, mesh.n_cells, mesh.n_nodes, host.corner_offsets, host.corners);
   boundaryConstraints(boundaries, mesh.n_cells, mesh.n_nodes, host);
   uploadMesh(host, mesh);
   uploadSides(boundaries, mesh);
-  if (spec.part) {
-    ownPart(*spec.part, window, mesh);
-  } else {
-    ownEverything(mesh);
-  }
+  ownPart(part, mesh);
   findNodeTwins(mesh);  // (a part's z_prisms: its own cells'; makeHalo settles it for the block)
   return mesh;
-}
-
-void ownEverything(Mesh& mesh) {
-  mesh.cell_owned = DeviceView<int*>("lagremap::mesh::cell_owned", mesh.n_cells);
-  mesh.node_owned = DeviceView<int*>("lagremap::mesh::node_owned", mesh.n_nodes);
-  Kokkos::deep_copy(mesh.cell_owned, 1);
-  Kokkos::deep_copy(mesh.node_owned, 1);
-  mesh.cell_global = Kokkos::View<long*, HostSpace>("lagremap::mesh::cell_global", mesh.n_cells);
-  mesh.node_global = Kokkos::View<long*, HostSpace>("lagremap::mesh::node_global", mesh.n_nodes);
-  for (Index c = 0; c < mesh.n_cells; ++c) mesh.cell_global(c) = c;
-  for (Index n = 0; n < mesh.n_nodes; ++n) mesh.node_global(n) = n;
-  mesh.n_owned_cells = mesh.n_cells;
-  mesh.n_owned_nodes = mesh.n_nodes;
-  mesh.n_global_cells = mesh.n_cells;
-  mesh.n_global_nodes = mesh.n_nodes;
 }
 
 HostMesh copyToHost(const Mesh& mesh) {

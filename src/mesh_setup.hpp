@@ -33,8 +33,6 @@ struct BlockSpec {
 // cut miss the corners, normals and traction faces of the cells beyond it:
 // their solution is their owner's (the halo's node exchange).
 Mesh buildBlockMesh(const BlockSpec& spec, const SideBoundaries& boundaries);
-// Marks every cell and node of the mesh owned, with global id = local id.
-void ownEverything(Mesh& mesh);
 // Mesh::node_solve_order from the node -> corner CRS.
 void orderNodesByFirstCorner(Mesh& mesh);
 // Mesh::node_twin_source and node_twin_flip: along each axis on which every

@@ -85,9 +85,7 @@ void addEvolvedTensors(std::vector<FieldRef>& list, const State& s) {
   if (s.has_hypo_elastic || !known) addIfAllocated(list, "S_ck", s.S_ck);
   if (s.has_neo_hookean || !known) addIfAllocated(list, "B_ck", s.B_ck);
 }
-}  // namespace
 
-namespace {
 // The evolved state (what a checkpoint holds): every tensor View, or
 // (halo) only the tensors the materials evolve.
 void addEvolvedFields(std::vector<FieldRef>& list, const State& s, bool every_tensor) {
