@@ -3,30 +3,70 @@
 // KOKKOS_INLINE_FUNCTION and allocation-free so they run on any backend.
 #pragma once
 
+#include <type_traits>
+
 #include "kokkos_compat.hpp"
 
 namespace lagremap {
 
-struct Vec3 {
-  double x, y, z;
+// Vec3 and SymMat3 are the double cases of Vec3Of / SymMat3Of, whose
+// component type may also be a pack of cells (CellPack, kokkos_compat.hpp):
+// the kernels written for a scalar Real then compute kCellLanes cells in the
+// lanes of one vector, with the same operations in the same order, so a
+// cell's numbers are the same bits either way (docs/method.md §7.1).
+template <class Real>
+struct Vec3Of {
+  Real x, y, z;
 };
+using Vec3 = Vec3Of<double>;
 
-KOKKOS_INLINE_FUNCTION Vec3 operator+(const Vec3& a, const Vec3& b) {
+// The scalar factor of a product: the component type itself (an int or a
+// float converts to a double), or a double for a pack of cells.
+template <class Real>
+struct ScalarOf {
+  using type = Real;
+};
+template <class Real>
+using NotDouble = std::enable_if_t<!std::is_same_v<Real, double>, int>;
+
+// v in every lane of a Real (a double: v itself).
+template <class Real>
+KOKKOS_INLINE_FUNCTION Real splat(double v) {
+  if constexpr (std::is_same_v<Real, double>) {
+    return v;
+  } else {
+    Real lanes;
+    for (int i = 0; i < int(sizeof(Real) / sizeof(double)); ++i) lanes[i] = v;
+    return lanes;
+  }
+}
+
+template <class Real>
+KOKKOS_INLINE_FUNCTION Vec3Of<Real> operator+(const Vec3Of<Real>& a, const Vec3Of<Real>& b) {
   return {a.x + b.x, a.y + b.y, a.z + b.z};
 }
-KOKKOS_INLINE_FUNCTION Vec3 operator-(const Vec3& a, const Vec3& b) {
+template <class Real>
+KOKKOS_INLINE_FUNCTION Vec3Of<Real> operator-(const Vec3Of<Real>& a, const Vec3Of<Real>& b) {
   return {a.x - b.x, a.y - b.y, a.z - b.z};
 }
-KOKKOS_INLINE_FUNCTION Vec3 operator-(const Vec3& a) {
+template <class Real>
+KOKKOS_INLINE_FUNCTION Vec3Of<Real> operator-(const Vec3Of<Real>& a) {
   return {-a.x, -a.y, -a.z};
 }
-KOKKOS_INLINE_FUNCTION Vec3 operator*(double s, const Vec3& a) {
+template <class Real>
+KOKKOS_INLINE_FUNCTION Vec3Of<Real> operator*(const typename ScalarOf<Real>::type& s,
+                                              const Vec3Of<Real>& a) {
+  return {s * a.x, s * a.y, s * a.z};
+}
+template <class Real, NotDouble<Real> = 0>
+KOKKOS_INLINE_FUNCTION Vec3Of<Real> operator*(double s, const Vec3Of<Real>& a) {
   return {s * a.x, s * a.y, s * a.z};
 }
 KOKKOS_INLINE_FUNCTION Vec3 operator*(const Vec3& a, double s) {
   return s * a;
 }
-KOKKOS_INLINE_FUNCTION Vec3& operator+=(Vec3& a, const Vec3& b) {
+template <class Real>
+KOKKOS_INLINE_FUNCTION Vec3Of<Real>& operator+=(Vec3Of<Real>& a, const Vec3Of<Real>& b) {
   a.x += b.x;
   a.y += b.y;
   a.z += b.z;
@@ -38,10 +78,12 @@ KOKKOS_INLINE_FUNCTION Vec3& operator-=(Vec3& a, const Vec3& b) {
   a.z -= b.z;
   return a;
 }
-KOKKOS_INLINE_FUNCTION double dot(const Vec3& a, const Vec3& b) {
+template <class Real>
+KOKKOS_INLINE_FUNCTION Real dot(const Vec3Of<Real>& a, const Vec3Of<Real>& b) {
   return a.x * b.x + a.y * b.y + a.z * b.z;
 }
-KOKKOS_INLINE_FUNCTION Vec3 cross(const Vec3& a, const Vec3& b) {
+template <class Real>
+KOKKOS_INLINE_FUNCTION Vec3Of<Real> cross(const Vec3Of<Real>& a, const Vec3Of<Real>& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 KOKKOS_INLINE_FUNCTION double norm(const Vec3& a) {
@@ -54,25 +96,29 @@ KOKKOS_INLINE_FUNCTION double norm(const Vec3& a) {
 // The lane functions do the same operations in the same order as their Vec3
 // counterparts, so the results are the same bits.
 constexpr int kHexVertices = 8;
-struct VertexVectors {
-  double x[kHexVertices], y[kHexVertices], z[kHexVertices];
-  KOKKOS_INLINE_FUNCTION Vec3 operator[](int p) const { return {x[p], y[p], z[p]}; }
-  KOKKOS_INLINE_FUNCTION void set(int p, const Vec3& v) {
+template <class Real>
+struct VertexVectorsOf {
+  Real x[kHexVertices], y[kHexVertices], z[kHexVertices];
+  KOKKOS_INLINE_FUNCTION Vec3Of<Real> operator[](int p) const { return {x[p], y[p], z[p]}; }
+  KOKKOS_INLINE_FUNCTION void set(int p, const Vec3Of<Real>& v) {
     x[p] = v.x;
     y[p] = v.y;
     z[p] = v.z;
   }
 };
+using VertexVectors = VertexVectorsOf<double>;
 // out_p = dot(g, d_p) at every vertex p < kVertices (4: a z prism's bottom
 // vertices, whose top ones repeat them).
-template <int kVertices = kHexVertices>
-KOKKOS_INLINE_FUNCTION void dotEach(const Vec3& g, const VertexVectors& d, double out[8]) {
+template <int kVertices = kHexVertices, class Real>
+KOKKOS_INLINE_FUNCTION void dotEach(const Vec3Of<Real>& g, const VertexVectorsOf<Real>& d,
+                                    Real out[8]) {
   LAGREMAP_LANES
   for (int p = 0; p < kVertices; ++p) out[p] = g.x * d.x[p] + g.y * d.y[p] + g.z * d.z[p];
 }
 // out_p = dot(a_p, b_p) at every vertex p < kVertices.
-template <int kVertices = kHexVertices>
-KOKKOS_INLINE_FUNCTION void dotEach(const VertexVectors& a, const VertexVectors& b, double out[8]) {
+template <int kVertices = kHexVertices, class Real>
+KOKKOS_INLINE_FUNCTION void dotEach(const VertexVectorsOf<Real>& a, const VertexVectorsOf<Real>& b,
+                                    Real out[8]) {
   LAGREMAP_LANES
   for (int p = 0; p < kVertices; ++p) {
     out[p] = a.x[p] * b.x[p] + a.y[p] * b.y[p] + a.z[p] * b.z[p];
@@ -80,33 +126,48 @@ KOKKOS_INLINE_FUNCTION void dotEach(const VertexVectors& a, const VertexVectors&
 }
 
 // Symmetric 3x3 tensor, Voigt-like order xx, yy, zz, xy, yz, xz.
-struct SymMat3 {
-  double xx, yy, zz, xy, yz, xz;
+template <class Real>
+struct SymMat3Of {
+  Real xx, yy, zz, xy, yz, xz;
 };
+using SymMat3 = SymMat3Of<double>;
 
-KOKKOS_INLINE_FUNCTION SymMat3 operator+(const SymMat3& a, const SymMat3& b) {
+template <class Real>
+KOKKOS_INLINE_FUNCTION SymMat3Of<Real> operator+(const SymMat3Of<Real>& a,
+                                                 const SymMat3Of<Real>& b) {
   return {a.xx + b.xx, a.yy + b.yy, a.zz + b.zz, a.xy + b.xy, a.yz + b.yz, a.xz + b.xz};
 }
-KOKKOS_INLINE_FUNCTION SymMat3& operator+=(SymMat3& a, const SymMat3& b) {
+template <class Real>
+KOKKOS_INLINE_FUNCTION SymMat3Of<Real>& operator+=(SymMat3Of<Real>& a, const SymMat3Of<Real>& b) {
   a = a + b;
   return a;
 }
-KOKKOS_INLINE_FUNCTION SymMat3 operator*(double s, const SymMat3& a) {
+template <class Real>
+KOKKOS_INLINE_FUNCTION SymMat3Of<Real> operator*(const typename ScalarOf<Real>::type& s,
+                                                 const SymMat3Of<Real>& a) {
   return {s * a.xx, s * a.yy, s * a.zz, s * a.xy, s * a.yz, s * a.xz};
 }
-KOKKOS_INLINE_FUNCTION Vec3 operator*(const SymMat3& m, const Vec3& v) {
+template <class Real, NotDouble<Real> = 0>
+KOKKOS_INLINE_FUNCTION SymMat3Of<Real> operator*(double s, const SymMat3Of<Real>& a) {
+  return {s * a.xx, s * a.yy, s * a.zz, s * a.xy, s * a.yz, s * a.xz};
+}
+template <class Real>
+KOKKOS_INLINE_FUNCTION Vec3Of<Real> operator*(const SymMat3Of<Real>& m, const Vec3Of<Real>& v) {
   return {m.xx * v.x + m.xy * v.y + m.xz * v.z, m.xy * v.x + m.yy * v.y + m.yz * v.z,
           m.xz * v.x + m.yz * v.y + m.zz * v.z};
 }
-KOKKOS_INLINE_FUNCTION SymMat3 identitySym(double s = 1.0) {
-  return {s, s, s, 0.0, 0.0, 0.0};
+template <class Real = double>
+KOKKOS_INLINE_FUNCTION SymMat3Of<Real> identitySym(Real s = Real(1.0)) {
+  return {s, s, s, Real{}, Real{}, Real{}};
 }
 // a (x) a / scale
-KOKKOS_INLINE_FUNCTION SymMat3 outerSelf(const Vec3& a, double scale) {
+template <class Real>
+KOKKOS_INLINE_FUNCTION SymMat3Of<Real> outerSelf(const Vec3Of<Real>& a, double scale) {
   return {scale * a.x * a.x, scale * a.y * a.y, scale * a.z * a.z,
           scale * a.x * a.y, scale * a.y * a.z, scale * a.x * a.z};
 }
-KOKKOS_INLINE_FUNCTION double trace(const SymMat3& m) {
+template <class Real>
+KOKKOS_INLINE_FUNCTION Real trace(const SymMat3Of<Real>& m) {
   return m.xx + m.yy + m.zz;
 }
 KOKKOS_INLINE_FUNCTION double det(const SymMat3& m) {
@@ -130,7 +191,9 @@ KOKKOS_INLINE_FUNCTION SymMat3 inverse(const SymMat3& m) {
 KOKKOS_INLINE_FUNCTION double ddot(const SymMat3& a, const SymMat3& b) {
   return a.xx * b.xx + a.yy * b.yy + a.zz * b.zz + 2.0 * (a.xy * b.xy + a.yz * b.yz + a.xz * b.xz);
 }
-KOKKOS_INLINE_FUNCTION SymMat3 operator-(const SymMat3& a, const SymMat3& b) {
+template <class Real>
+KOKKOS_INLINE_FUNCTION SymMat3Of<Real> operator-(const SymMat3Of<Real>& a,
+                                                 const SymMat3Of<Real>& b) {
   return {a.xx - b.xx, a.yy - b.yy, a.zz - b.zz, a.xy - b.xy, a.yz - b.yz, a.xz - b.xz};
 }
 // Frobenius norm sqrt(a : a), the von Mises measure of a deviator (DESIGN §4).

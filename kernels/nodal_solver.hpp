@@ -29,75 +29,172 @@ struct CornerControls {
 
 namespace detail {
 
+// The corner kernel is written for a scalar Real (reconstruction.hpp): a
+// double, one cell, or on CPU builds a CellPack, kCellLanes consecutive cells
+// whose stencils have the same shape (lanesShareStencilShape), in the lanes of
+// one vector. Its loads and stores go lane by lane.
+template <class Real>
+constexpr int kLanesOf = 1;
+#if LAGREMAP_CELL_PACKS
+template <>
+constexpr int kLanesOf<hex::CellPack> = hex::kCellLanes;
+#endif
+
+// The lanes' cells: cell[i] of lane i.
+template <class Real>
+struct CellLanes {
+  Index cell[kLanesOf<Real>];
+};
+
+// value(i) of every lane i.
+template <class Real, class Value>
+KOKKOS_FORCEINLINE_FUNCTION Real gatherLanes(const Value& value) {
+  if constexpr (kLanesOf<Real> == 1) {
+    return value(0);
+  } else {
+    Real lanes;
+    for (int i = 0; i < kLanesOf<Real>; ++i) lanes[i] = value(i);
+    return lanes;
+  }
+}
+template <class Real>
+KOKKOS_FORCEINLINE_FUNCTION double laneOf(const Real& value, int i) {
+  if constexpr (kLanesOf<Real> == 1) {
+    return value;
+  } else {
+    return value[i];
+  }
+}
+template <class Real, class View>
+KOKKOS_FORCEINLINE_FUNCTION Real loadLanes(const View& v, const CellLanes<Real>& at) {
+  return gatherLanes<Real>([&](int i) { return v(at.cell[i]); });
+}
+template <class Real, class View>
+KOKKOS_FORCEINLINE_FUNCTION Vec3Of<Real> loadVec3Lanes(const View& v, const CellLanes<Real>& at) {
+  return {gatherLanes<Real>([&](int i) { return v(at.cell[i], 0); }),
+          gatherLanes<Real>([&](int i) { return v(at.cell[i], 1); }),
+          gatherLanes<Real>([&](int i) { return v(at.cell[i], 2); })};
+}
+template <class Real, class View>
+KOKKOS_FORCEINLINE_FUNCTION SymMat3Of<Real> loadSymLanes(const View& v, const CellLanes<Real>& at) {
+  SymMat3Of<Real> m;
+  Real* entries[6] = {&m.xx, &m.yy, &m.zz, &m.xy, &m.yz, &m.xz};
+  for (int j = 0; j < 6; ++j) *entries[j] = gatherLanes<Real>([&](int i) { return v(at.cell[i], j); });
+  return m;
+}
+template <class Real, class View>
+KOKKOS_FORCEINLINE_FUNCTION void storeVec3Lanes(const View& v, const CellLanes<Real>& at,
+                                                const Vec3Of<Real>& a) {
+  for (int i = 0; i < kLanesOf<Real>; ++i) {
+    v(at.cell[i], 0) = laneOf(a.x, i);
+    v(at.cell[i], 1) = laneOf(a.y, i);
+    v(at.cell[i], 2) = laneOf(a.z, i);
+  }
+}
+
+KOKKOS_FORCEINLINE_FUNCTION double magnitude(double v) {
+  return math::fabs(v);
+}
+#if LAGREMAP_CELL_PACKS
+KOKKOS_FORCEINLINE_FUNCTION hex::CellPack magnitude(hex::CellPack v) {
+  return v < 0.0 ? -v : v;
+}
+#endif
+
+// What stands across face f of a cell in its reconstruction stencil
+// (DESIGN §3): a neighbour; across a wall, the cell's mirror image; nothing
+// (a free side: a zero jump).
+enum class StencilFace : unsigned char { Neighbour, Mirror, None };
+
+template <class Neighbors, class FaceSide, class SideKind>
+KOKKOS_FORCEINLINE_FUNCTION StencilFace stencilFace(const Neighbors& neighbors,
+                                                    const FaceSide& face_side,
+                                                    const SideKind& side_kind, Index c, int f) {
+  if (neighbors(c, f) >= 0) return StencilFace::Neighbour;
+  const int side = face_side(c, f);
+  return side >= 0 && side_kind(side) == int(BoundaryKind::Wall) ? StencilFace::Mirror
+                                                                 : StencilFace::None;
+}
+
 // Mirror image across a wall face: offset to the ghost centroid, the jump of
 // the velocity (normal component reversed) and the face's unit normal (for the
 // stress's mirror jump); the pressure is continuous.
-KOKKOS_INLINE_FUNCTION void mirrorAcrossFace(const Vec3 x[8], int f, const Vec3& centroid,
-                                             const Vec3& velocity, Vec3& offset,
-                                             Vec3& velocity_jump, Vec3& normal) {
-  Vec3 q[4];
-  hex::faceNodes(x, f, q);
-  const Vec3 area = hex::faceArea(q);
-  normal = (1.0 / norm(area)) * area;
-  const Vec3 face_point = 0.25 * (q[0] + q[1] + q[2] + q[3]);
+template <class Real>
+KOKKOS_INLINE_FUNCTION void mirrorAcrossFace(const Vec3Of<Real> x[8], int f,
+                                             const Vec3Of<Real>& centroid,
+                                             const Vec3Of<Real>& velocity, Vec3Of<Real>& offset,
+                                             Vec3Of<Real>& velocity_jump, Vec3Of<Real>& normal) {
+  Vec3Of<Real> q[4];
+  for (int k = 0; k < 4; ++k) q[k] = x[hex::faceNode(f, k)];
+  const Vec3Of<Real> area = 0.5 * cross(q[2] - q[0], q[3] - q[1]);  // hex::faceArea
+  normal = (1.0 / hex::detail::laneSqrt(dot(area, area))) * area;
+  const Vec3Of<Real> face_point = 0.25 * (q[0] + q[1] + q[2] + q[3]);
   offset = (2.0 * dot(face_point - centroid, normal)) * normal;
   velocity_jump = (-2.0 * dot(velocity, normal)) * normal;
 }
 
-}  // namespace detail
-
-namespace detail {
+template <class Real>
+KOKKOS_FORCEINLINE_FUNCTION Vec3Of<Real> zeroVec3() {
+  return {Real{}, Real{}, Real{}};
+}
 
 // The face-neighbour stencil of a cell for the reconstruction (DESIGN §3):
 // the least-squares normal matrix, the right-hand sides of V and of the
 // pressure (a fluid) or the Cauchy stress (a solid), and the neighbour jumps
 // the limiters measure against. Across a wall the neighbour is the cell's
 // mirror image; a free side leaves a zero jump.
+template <class Real>
 struct CornerStencil {
-  LeastSquares lsq;
-  Vec3 rhs_v[3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, rhs_p{0, 0, 0};
-  Vec3 rhs_sigma[6];  // (a solid's only)
-  Vec3 dv_nb[6];
-  SymMat3 dsigma_nb[6];
-  Bounds pb;
-  KOKKOS_INLINE_FUNCTION explicit CornerStencil(double p_cell) : pb(p_cell) {}
+  LeastSquaresOf<Real> lsq;
+  Vec3Of<Real> rhs_v[3] = {zeroVec3<Real>(), zeroVec3<Real>(), zeroVec3<Real>()};
+  Vec3Of<Real> rhs_p = zeroVec3<Real>();
+  Vec3Of<Real> rhs_sigma[6];  // (a solid's only)
+  Vec3Of<Real> dv_nb[6];
+  SymMat3Of<Real> dsigma_nb[6];
+  BoundsOf<Real> pb;
+  KOKKOS_INLINE_FUNCTION explicit CornerStencil(Real p_cell) : pb(p_cell) {}
 };
 
-// `z_prism`: the cell is a prism along z (Mesh::z_prisms), whose z faces lie
-// in the planes z_0 and z_0 + h: their mirror images are h away along -+e_z.
-template <class Neighbors, class FaceSide, class SideKind>
-KOKKOS_FORCEINLINE_FUNCTION void gatherStencil(const State& s, const Neighbors& neighbors,
-                                               const FaceSide& face_side, const SideKind& side_kind,
-                                               bool z_prism, Index c, const Vec3 x[8],
-                                               const Vec3& v_cell, double p_cell,
-                                               const SymMat3& sigma_cell, bool solid,
-                                               CornerStencil& st) {
-  const Vec3 centroid = loadVec3(s.x_c, c);
-  for (int i = 0; i < (solid ? 6 : 0); ++i) st.rhs_sigma[i] = Vec3{0, 0, 0};
+// The stencil of the lanes' cells, whose faces f all have the same
+// `faces[f]`. `z_prism`: the cells are prisms along z (Mesh::z_prisms),
+// whose z faces lie in the planes z_0 and z_0 + h: their mirror images are h
+// away along -+e_z.
+template <class Real>
+KOKKOS_FORCEINLINE_FUNCTION void gatherStencil(const State& s, const Index nb[6][kLanesOf<Real>],
+                                               const StencilFace faces[6], bool z_prism,
+                                               const CellLanes<Real>& cells,
+                                               const Vec3Of<Real> x[8], const Vec3Of<Real>& v_cell,
+                                               const Real& p_cell,
+                                               const SymMat3Of<Real>& sigma_cell, bool solid,
+                                               CornerStencil<Real>& st) {
+  const Vec3Of<Real> centroid = loadVec3Lanes(s.x_c, cells);
+  for (int i = 0; i < (solid ? 6 : 0); ++i) st.rhs_sigma[i] = zeroVec3<Real>();
   for (int f = 0; f < 6; ++f) {
-    const Index nb = neighbors(c, f);
-    Vec3 dx, dv, normal;
-    double dp = 0.0;
-    SymMat3 dsigma = identitySym(0.0);
-    if (nb >= 0) {
-      dx = loadVec3(s.x_c, nb) - centroid;
-      dv = loadVec3(s.v_c, nb) - v_cell;
-      dp = s.p_c(nb) - p_cell;
+    Vec3Of<Real> dx, dv, normal;
+    Real dp{};
+    SymMat3Of<Real> dsigma = identitySym(Real{});
+    if (faces[f] == StencilFace::Neighbour) {
+      CellLanes<Real> across;
+      for (int i = 0; i < kLanesOf<Real>; ++i) across.cell[i] = nb[f][i];
+      dx = loadVec3Lanes(s.x_c, across) - centroid;
+      dv = loadVec3Lanes(s.v_c, across) - v_cell;
+      const Real p_across = loadLanes(s.p_c, across);
+      dp = p_across - p_cell;
       // a fluid neighbour's S_c is zero
-      if (solid) dsigma = loadSym(s.S_c, nb) + identitySym(-s.p_c(nb)) - sigma_cell;
-    } else if (face_side(c, f) >= 0 && side_kind(face_side(c, f)) == int(BoundaryKind::Wall)) {
+      if (solid) dsigma = loadSymLanes(s.S_c, across) + identitySym(-p_across) - sigma_cell;
+    } else if (faces[f] == StencilFace::Mirror) {
       if (z_prism && f >= 4) {
         const double side = f == 4 ? -1.0 : 1.0;
-        normal = Vec3{0.0, 0.0, side};
-        dx = Vec3{0.0, 0.0, side * (x[4].z - x[0].z)};
-        dv = Vec3{0.0, 0.0, -2.0 * v_cell.z};
+        normal = Vec3Of<Real>{Real{}, Real{}, splat<Real>(side)};
+        dx = Vec3Of<Real>{Real{}, Real{}, side * (x[4].z - x[0].z)};
+        dv = Vec3Of<Real>{Real{}, Real{}, -2.0 * v_cell.z};
       } else {
         mirrorAcrossFace(x, f, centroid, v_cell, dx, dv, normal);
       }
       if (solid) dsigma = mirrorJump(sigma_cell, normal);
     } else {
-      st.dv_nb[f] = Vec3{0, 0, 0};
-      if (solid) st.dsigma_nb[f] = identitySym(0.0);
+      st.dv_nb[f] = zeroVec3<Real>();
+      if (solid) st.dsigma_nb[f] = identitySym(Real{});
       continue;
     }
     st.lsq.addOffset(dx);
@@ -128,25 +225,27 @@ KOKKOS_FORCEINLINE_FUNCTION void gatherStencil(const State& s, const Neighbors& 
 // Squared norms compared: one square root per cell. The vertices' values
 // are computed in lanes (VertexVectors), the same numbers as vertex by vertex.
 // kVertices = 4: a z prism's bottom vertices only (computeCornerTerms).
-template <int kVertices>
-KOKKOS_FORCEINLINE_FUNCTION void limitedNodeVelocities(const CornerStencil& st, const SymMat3& inv,
-                                                       const VertexVectors& offsets,
-                                                       const Vec3& v_cell, double sound_speed,
-                                                       bool solid, VertexVectors& v_node) {
-  const Vec3 grad_v[3] = {inv * st.rhs_v[0], inv * st.rhs_v[1], inv * st.rhs_v[2]};
-  VertexVectors dv_node;
+template <int kVertices, class Real>
+KOKKOS_FORCEINLINE_FUNCTION void limitedNodeVelocities(const CornerStencil<Real>& st,
+                                                       const SymMat3Of<Real>& inv,
+                                                       const VertexVectorsOf<Real>& offsets,
+                                                       const Vec3Of<Real>& v_cell,
+                                                       const Real& sound_speed, bool solid,
+                                                       VertexVectorsOf<Real>& v_node) {
+  const Vec3Of<Real> grad_v[3] = {inv * st.rhs_v[0], inv * st.rhs_v[1], inv * st.rhs_v[2]};
+  VertexVectorsOf<Real> dv_node;
   dotEach<kVertices>(grad_v[0], offsets, dv_node.x);
   dotEach<kVertices>(grad_v[1], offsets, dv_node.y);
   dotEach<kVertices>(grad_v[2], offsets, dv_node.z);
-  double length2[kHexVertices];
+  Real length2[kHexVertices];
   dotEach<kVertices>(dv_node, dv_node, length2);
-  const double phi_v = solid ? projectedLimiter<true, true, kVertices>(st.dv_nb, dv_node, length2)
-                             : projectedLimiter<false, true, kVertices>(st.dv_nb, dv_node, length2);
-  double longest2 = 0.0;
+  const Real phi_v = solid ? projectedLimiter<true, true, kVertices>(st.dv_nb, dv_node, length2)
+                           : projectedLimiter<false, true, kVertices>(st.dv_nb, dv_node, length2);
+  Real longest2{};
   for (int p = 0; p < kVertices; ++p) longest2 = length2[p] > longest2 ? length2[p] : longest2;
-  const double phi = phi_v * phi_v * longest2 > sound_speed * sound_speed
-                         ? sound_speed / math::sqrt(longest2)
-                         : phi_v;
+  const Real phi = phi_v * phi_v * longest2 > sound_speed * sound_speed
+                       ? sound_speed / hex::detail::laneSqrt(longest2)
+                       : phi_v;
   LAGREMAP_LANES
   for (int p = 0; p < kVertices; ++p) {
     v_node.x[p] = v_cell.x + phi * dv_node.x[p];
@@ -157,18 +256,11 @@ KOKKOS_FORCEINLINE_FUNCTION void limitedNodeVelocities(const CornerStencil& st, 
 
 // The six components xx, yy, zz, xy, yz, xz of a symmetric tensor at the 8
 // vertices, in lanes.
+template <class Real>
 struct VertexTensors {
-  double c[6][kHexVertices];
-  KOKKOS_INLINE_FUNCTION SymMat3 operator[](int p) const {
+  Real c[6][kHexVertices];
+  KOKKOS_INLINE_FUNCTION SymMat3Of<Real> operator[](int p) const {
     return {c[0][p], c[1][p], c[2][p], c[3][p], c[4][p], c[5][p]};
-  }
-  KOKKOS_INLINE_FUNCTION void set(int p, const SymMat3& t) {
-    c[0][p] = t.xx;
-    c[1][p] = t.yy;
-    c[2][p] = t.zz;
-    c[3][p] = t.xy;
-    c[4][p] = t.yz;
-    c[5][p] = t.xz;
   }
 };
 
@@ -176,31 +268,33 @@ struct VertexTensors {
 // factor (pulled-back jumps, projectedLimiter with the plateau guard) and the
 // acoustic bound |d sigma| <= rho aL^2; the unlimited excursions G d_p give
 // both the node values and the limiter's lengths.
-template <int kVertices>
-KOKKOS_FORCEINLINE_FUNCTION void limitedNodeStresses(const CornerStencil& st, const SymMat3& inv,
-                                                     const VertexVectors& offsets,
-                                                     const SymMat3& sigma_cell, double stress_scale,
-                                                     VertexTensors& sigma_node) {
-  Vec3 grad_sigma[6];
+template <int kVertices, class Real>
+KOKKOS_FORCEINLINE_FUNCTION void limitedNodeStresses(const CornerStencil<Real>& st,
+                                                     const SymMat3Of<Real>& inv,
+                                                     const VertexVectorsOf<Real>& offsets,
+                                                     const SymMat3Of<Real>& sigma_cell,
+                                                     const Real& stress_scale,
+                                                     VertexTensors<Real>& sigma_node) {
+  Vec3Of<Real> grad_sigma[6];
   for (int i = 0; i < 6; ++i) grad_sigma[i] = inv * st.rhs_sigma[i];
-  VertexTensors excursion;
+  VertexTensors<Real> excursion;
   for (int i = 0; i < 6; ++i) dotEach<kVertices>(grad_sigma[i], offsets, excursion.c[i]);
-  double length2[kHexVertices], largest2 = 0.0;
+  Real length2[kHexVertices], largest2{};
   LAGREMAP_LANES
   for (int p = 0; p < kVertices; ++p) {  // ddot(excursion_p, excursion_p)
-    const double(&e)[6][kHexVertices] = excursion.c;
+    const Real(&e)[6][kHexVertices] = excursion.c;
     length2[p] = e[0][p] * e[0][p] + e[1][p] * e[1][p] + e[2][p] * e[2][p] +
                  2.0 * (e[3][p] * e[3][p] + e[4][p] * e[4][p] + e[5][p] * e[5][p]);
   }
   for (int p = 0; p < kVertices; ++p) largest2 = length2[p] > largest2 ? length2[p] : largest2;
-  Vec3 pulled[6];
+  Vec3Of<Real> pulled[6];
   pullBack(grad_sigma, st.dsigma_nb, pulled);
-  double phi_sigma = projectedLimiter<true, false, kVertices>(pulled, offsets, length2);
-  if (phi_sigma * phi_sigma * largest2 > stress_scale * stress_scale) {
-    phi_sigma = stress_scale / math::sqrt(largest2);
-  }
-  const double cell[6] = {sigma_cell.xx, sigma_cell.yy, sigma_cell.zz,
-                          sigma_cell.xy, sigma_cell.yz, sigma_cell.xz};
+  Real phi_sigma = projectedLimiter<true, false, kVertices>(pulled, offsets, length2);
+  phi_sigma = phi_sigma * phi_sigma * largest2 > stress_scale * stress_scale
+                  ? stress_scale / hex::detail::laneSqrt(largest2)
+                  : phi_sigma;
+  const Real cell[6] = {sigma_cell.xx, sigma_cell.yy, sigma_cell.zz,
+                        sigma_cell.xy, sigma_cell.yz, sigma_cell.xz};
   for (int i = 0; i < 6; ++i) {
     LAGREMAP_LANES
     for (int p = 0; p < kVertices; ++p) {
@@ -212,35 +306,37 @@ KOKKOS_FORCEINLINE_FUNCTION void limitedNodeStresses(const CornerStencil& st, co
 // A fluid's node pressures: Barth-Jespersen in its two-division form (the
 // same phi as projectedLimiter<false, false>) and the acoustic bound
 // |dp| <= rho aL^2.
-template <int kVertices>
-KOKKOS_FORCEINLINE_FUNCTION void limitedNodePressures(const CornerStencil& st, const SymMat3& inv,
-                                                      const VertexVectors& offsets, double p_cell,
-                                                      double stress_scale,
-                                                      double p_node[kHexVertices]) {
-  const Vec3 grad_p = inv * st.rhs_p;
-  double dp_node[kHexVertices];
+template <int kVertices, class Real>
+KOKKOS_FORCEINLINE_FUNCTION void limitedNodePressures(const CornerStencil<Real>& st,
+                                                      const SymMat3Of<Real>& inv,
+                                                      const VertexVectorsOf<Real>& offsets,
+                                                      const Real& p_cell, const Real& stress_scale,
+                                                      Real p_node[kHexVertices]) {
+  const Vec3Of<Real> grad_p = inv * st.rhs_p;
+  Real dp_node[kHexVertices];
   dotEach<kVertices>(grad_p, offsets, dp_node);
-  VertexExcursion excursion;
-  double largest = 0.0;
+  VertexExcursionOf<Real> excursion;
+  Real largest{};
   for (int p = 0; p < kVertices; ++p) {
     excursion.include(dp_node[p]);
-    const double size = math::fabs(dp_node[p]);
+    const Real size = magnitude(dp_node[p]);
     largest = size > largest ? size : largest;
   }
-  double phi_p = cellLimiter(excursion, p_cell, st.pb, 1.0);
-  if (phi_p * largest > stress_scale) phi_p = stress_scale / largest;
+  Real phi_p = cellLimiter(excursion, p_cell, st.pb, 1.0);
+  phi_p = phi_p * largest > stress_scale ? stress_scale / largest : phi_p;
   LAGREMAP_LANES
   for (int p = 0; p < kVertices; ++p) p_node[p] = p_cell + phi_p * dp_node[p];
 }
 
 // V and sigma at the vertices p < kVertices: the limited reconstructions
 // above from the cell's stencil.
-template <int kVertices>
+template <int kVertices, class Real>
 KOKKOS_FORCEINLINE_FUNCTION void reconstructAtVertices(
-    const CornerStencil& stencil, const SymMat3& inv, const VertexVectors& offsets,
-    const Vec3& v_cell, double p_cell, const SymMat3& sigma_cell, double sound_speed,
-    double stress_scale, bool solid, VertexVectors& v_node, double p_node[kHexVertices],
-    VertexTensors& sigma_node) {
+    const CornerStencil<Real>& stencil, const SymMat3Of<Real>& inv,
+    const VertexVectorsOf<Real>& offsets, const Vec3Of<Real>& v_cell, const Real& p_cell,
+    const SymMat3Of<Real>& sigma_cell, const Real& sound_speed, const Real& stress_scale,
+    bool solid, VertexVectorsOf<Real>& v_node, Real p_node[kHexVertices],
+    VertexTensors<Real>& sigma_node) {
   limitedNodeVelocities<kVertices>(stencil, inv, offsets, v_cell, sound_speed, solid, v_node);
   if (solid) {
     limitedNodeStresses<kVertices>(stencil, inv, offsets, sigma_cell, stress_scale, sigma_node);
@@ -258,9 +354,10 @@ KOKKOS_FORCEINLINE_FUNCTION void reconstructAtVertices(
 // bottom ones' to the bit, and every limiter is a minimum over the same
 // numbers. Computing the bottom four alone gives the same values for half
 // the vertex lanes (performance.md §3.1).
-KOKKOS_FORCEINLINE_FUNCTION void repeatBottomVertices(bool solid, VertexVectors& v_node,
-                                                      double p_node[kHexVertices],
-                                                      VertexTensors& sigma_node) {
+template <class Real>
+KOKKOS_FORCEINLINE_FUNCTION void repeatBottomVertices(bool solid, VertexVectorsOf<Real>& v_node,
+                                                      Real p_node[kHexVertices],
+                                                      VertexTensors<Real>& sigma_node) {
   for (int p = 0; p < 4; ++p) {
     v_node.x[p + 4] = v_node.x[p];
     v_node.y[p + 4] = v_node.y[p];
@@ -273,88 +370,152 @@ KOKKOS_FORCEINLINE_FUNCTION void repeatBottomVertices(bool solid, VertexVectors&
   }
 }
 
+// The corner terms of one stage (computeCornerTerms below) for the cells of
+// the lanes of a Real.
+struct CornerTerms {
+  CellNodesView cell_nodes;
+  CellFacesView neighbors;
+  CellFacesView face_side;
+  DeviceView<int[kNumSides]> side_kind;
+  Vec3View x_n;
+  State s;
+  bool z_prisms, second_order, atomics;
+
+  // The cells' stencils have one shape: the same StencilFace across each
+  // face, and all solid or all fluid (what the lanes of a pack must share).
+  KOKKOS_INLINE_FUNCTION bool lanesShareStencilShape(Index first, int count) const {
+    const bool solid = s.aT_c(first) > 0.0;
+    for (int i = 1; i < count; ++i) {
+      if ((s.aT_c(first + i) > 0.0) != solid) return false;
+    }
+    for (int f = 0; f < 6; ++f) {
+      const StencilFace face = stencilFace(neighbors, face_side, side_kind, first, f);
+      for (int i = 1; i < count; ++i) {
+        if (stencilFace(neighbors, face_side, side_kind, first + i, f) != face) return false;
+      }
+    }
+    return true;
+  }
+
+  // Per cell: V and sigma reconstructed at its nodes, then B_cp = M_cp
+  // V_c(p) - sigma_c(p) A_cp (computeCornerTerms). The lanes hold the cells
+  // first, first + 1, ...
+  template <class Real>
+  KOKKOS_INLINE_FUNCTION void ofCells(Index first) const {
+    CellLanes<Real> cells;
+    for (int i = 0; i < kLanesOf<Real>; ++i) cells.cell[i] = first + i;
+    const Vec3Of<Real> v_cell = loadVec3Lanes(s.v_c, cells);
+    const Real p_cell = loadLanes(s.p_c, cells);
+    const bool solid = s.aT_c(first) > 0.0;  // some material with strength in the cell
+    const SymMat3Of<Real> sigma_cell = solid ? loadSymLanes(s.S_c, cells) + identitySym(-p_cell)
+                                             : identitySym(-p_cell);
+    VertexVectorsOf<Real> v_node;
+    Real p_node[kHexVertices];        // fluid: sigma = -p I
+    VertexTensors<Real> sigma_node;   // solid
+    if (!second_order) {
+      for (int p = 0; p < kHexVertices; ++p) {
+        v_node.set(p, v_cell);
+        p_node[p] = p_cell;
+        for (int i = 0; i < 6; ++i) {
+          const Real entries[6] = {sigma_cell.xx, sigma_cell.yy, sigma_cell.zz,
+                                   sigma_cell.xy, sigma_cell.yz, sigma_cell.xz};
+          sigma_node.c[i][p] = entries[i];
+        }
+      }
+    } else {
+      Vec3Of<Real> x[8];
+      for (int p = 0; p < 8; ++p) {
+        CellLanes<Real> node;
+        for (int i = 0; i < kLanesOf<Real>; ++i) node.cell[i] = cell_nodes(cells.cell[i], p);
+        x[p] = loadVec3Lanes(x_n, node);
+      }
+      Index nb[6][kLanesOf<Real>];
+      StencilFace faces[6];
+      for (int f = 0; f < 6; ++f) {
+        faces[f] = stencilFace(neighbors, face_side, side_kind, first, f);
+        for (int i = 0; i < kLanesOf<Real>; ++i) nb[f][i] = neighbors(cells.cell[i], f);
+      }
+      CornerStencil<Real> stencil(p_cell);
+      gatherStencil(s, nb, faces, z_prisms, cells, x, v_cell, p_cell, sigma_cell, solid, stencil);
+      const SymMat3Of<Real> inv = stencil.lsq.solver();
+      const Vec3Of<Real> centroid = loadVec3Lanes(s.x_c, cells);
+      VertexVectorsOf<Real> offsets;
+      LAGREMAP_LANES
+      for (int p = 0; p < kHexVertices; ++p) offsets.set(p, x[p] - centroid);
+      const Real sound_speed = loadLanes(s.aL_c, cells);
+      const Real stress_scale = loadLanes(s.rho_c, cells) * sound_speed * sound_speed;
+      if (z_prisms) {  // the bottom vertices, then the top ones repeat them
+        reconstructAtVertices<4>(stencil, inv, offsets, v_cell, p_cell, sigma_cell, sound_speed,
+                                 stress_scale, solid, v_node, p_node, sigma_node);
+        repeatBottomVertices(solid, v_node, p_node, sigma_node);
+      } else {
+        reconstructAtVertices<kHexVertices>(stencil, inv, offsets, v_cell, p_cell, sigma_cell,
+                                            sound_speed, stress_scale, solid, v_node, p_node,
+                                            sigma_node);
+      }
+    }
+
+    // B_cp = M_cp V_c(p) - sigma_c(p) A_cp (a loop per case: the compiler
+    // does not take the tests out of the loop by itself)
+    const auto storeRhs = [&](int p, const CellLanes<Real>& corners,
+                              const Vec3Of<Real>& stress_force) {
+      storeVec3Lanes(s.B_cp, corners,
+                     loadSymLanes(s.M_cp, corners) * v_node[p] + stress_force);
+    };
+    for (int p = 0; p < 8; ++p) {
+      CellLanes<Real> corners;
+      for (int i = 0; i < kLanesOf<Real>; ++i) corners.cell[i] = 8 * cells.cell[i] + p;
+      if (solid) {
+        storeRhs(p, corners, -(sigma_node[p] * loadVec3Lanes(s.A_cp, corners)));
+      } else {
+        storeRhs(p, corners, p_node[p] * loadVec3Lanes(s.A_cp, corners));
+      }
+    }
+    if (atomics) {
+      for (int i = 0; i < kLanesOf<Real>; ++i) {
+        for (int p = 0; p < 8; ++p) {
+          const Index corner = 8 * cells.cell[i] + p, node = cell_nodes(cells.cell[i], p);
+          for (int j = 0; j < 6; ++j) Kokkos::atomic_add(&s.M_n(node, j), s.M_cp(corner, j));
+          for (int j = 0; j < 3; ++j) Kokkos::atomic_add(&s.B_n(node, j), s.B_cp(corner, j));
+        }
+      }
+    }
+  }
+};
+
 }  // namespace detail
 
 // Per cell: V and sigma reconstructed at its nodes (DESIGN §3: piecewise
 // constant at first order; second order: least-squares gradients limited by
 // one frame-independent factor each, a solid's whole Cauchy stress as a
 // tensor, a fluid's pressure as a scalar), then B_cp = M_cp V_c(p) -
-// sigma_c(p) A_cp.
+// sigma_c(p) A_cp. On CPU builds the cells go kCellLanes at a time in the
+// lanes of a vector where their stencils have one shape (the same bits as
+// cell by cell, docs/method.md §7.1).
 inline void computeCornerTerms(const Mesh& mesh, const State& state,
                                const CornerControls& controls) {
-  const auto cell_nodes = mesh.cell_nodes;
-  const auto neighbors = mesh.cell_neighbors;
-  const auto face_side = mesh.cell_face_side;
-  const auto side_kind = mesh.side_kind;
-  const auto x_n = mesh.x_n;
-  const bool z_prisms = mesh.z_prisms;
-  const auto s = state;
-  const bool second_order = controls.order >= 2;
-  const bool atomics = controls.gather == Gather::Atomics;
-  if (atomics) {
-    Kokkos::deep_copy(s.M_n, 0.0);
-    Kokkos::deep_copy(s.B_n, 0.0);
+  const detail::CornerTerms terms{mesh.cell_nodes, mesh.cell_neighbors, mesh.cell_face_side,
+                                  mesh.side_kind,  mesh.x_n,            state,
+                                  mesh.z_prisms,   controls.order >= 2,
+                                  controls.gather == Gather::Atomics};
+  if (terms.atomics) {
+    Kokkos::deep_copy(state.M_n, 0.0);
+    Kokkos::deep_copy(state.B_n, 0.0);
   }
+  const Index n_cells = mesh.n_cells;
   Kokkos::parallel_for(
       "lagremap::corners::reconstruct_and_impedance",
-      Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells), KOKKOS_LAMBDA(const Index c) {
-        const Vec3 v_cell = loadVec3(s.v_c, c);
-        const double p_cell = s.p_c(c);
-        const bool solid = s.aT_c(c) > 0.0;  // some material with strength in the cell
-        const SymMat3 sigma_cell =
-            solid ? loadSym(s.S_c, c) + identitySym(-p_cell) : identitySym(-p_cell);
-        VertexVectors v_node;
-        double p_node[kHexVertices];       // fluid: sigma = -p I
-        detail::VertexTensors sigma_node;  // solid
-        if (!second_order) {
-          for (int p = 0; p < kHexVertices; ++p) {
-            v_node.set(p, v_cell);
-            p_node[p] = p_cell;
-            sigma_node.set(p, sigma_cell);
-          }
-        } else {
-          Vec3 x[8];
-          for (int p = 0; p < 8; ++p) x[p] = loadVec3(x_n, cell_nodes(c, p));
-          detail::CornerStencil stencil(p_cell);
-          detail::gatherStencil(s, neighbors, face_side, side_kind, z_prisms, c, x, v_cell, p_cell,
-                                sigma_cell, solid, stencil);
-          const SymMat3 inv = stencil.lsq.solver();
-          const Vec3 centroid = loadVec3(s.x_c, c);
-          VertexVectors offsets;
-          LAGREMAP_LANES
-          for (int p = 0; p < kHexVertices; ++p) offsets.set(p, x[p] - centroid);
-          const double sound_speed = s.aL_c(c);
-          const double stress_scale = s.rho_c(c) * sound_speed * sound_speed;
-          if (z_prisms) {  // the bottom vertices, then the top ones repeat them
-            detail::reconstructAtVertices<4>(stencil, inv, offsets, v_cell, p_cell, sigma_cell,
-                                             sound_speed, stress_scale, solid, v_node, p_node,
-                                             sigma_node);
-            detail::repeatBottomVertices(solid, v_node, p_node, sigma_node);
-          } else {
-            detail::reconstructAtVertices<kHexVertices>(stencil, inv, offsets, v_cell, p_cell,
-                                                        sigma_cell, sound_speed, stress_scale,
-                                                        solid, v_node, p_node, sigma_node);
-          }
+      Kokkos::RangePolicy<ExecSpace>(0, cellChunks(mesh)), KOKKOS_LAMBDA(const Index chunk) {
+        const Index first = chunk * hex::kCellLanes;
+        const int count = chunkCells(n_cells, first);
+#if LAGREMAP_CELL_PACKS
+        if (count == hex::kCellLanes && terms.second_order &&
+            terms.lanesShareStencilShape(first, count)) {
+          terms.ofCells<hex::CellPack>(first);
+          return;
         }
-
-        // B_cp = M_cp V_c(p) - sigma_c(p) A_cp (a loop per case: the compiler
-        // does not take the tests out of the loop by itself)
-        const auto storeRhs = [&](int p, const Vec3& stress_force) {
-          const Index corner = 8 * c + p;
-          storeVec3(s.B_cp, corner, loadSym(s.M_cp, corner) * v_node[p] + stress_force);
-        };
-        if (solid) {
-          for (int p = 0; p < 8; ++p) storeRhs(p, -(sigma_node[p] * loadVec3(s.A_cp, 8 * c + p)));
-        } else {
-          for (int p = 0; p < 8; ++p) storeRhs(p, p_node[p] * loadVec3(s.A_cp, 8 * c + p));
-        }
-        if (atomics) {
-          for (int p = 0; p < 8; ++p) {
-            const Index corner = 8 * c + p, node = cell_nodes(c, p);
-            for (int i = 0; i < 6; ++i) Kokkos::atomic_add(&s.M_n(node, i), s.M_cp(corner, i));
-            for (int i = 0; i < 3; ++i) Kokkos::atomic_add(&s.B_n(node, i), s.B_cp(corner, i));
-          }
-        }
+#endif
+        for (int i = 0; i < count; ++i) terms.ofCells<double>(first + i);
       });
 }
 

@@ -11,11 +11,19 @@
 
 namespace lagremap {
 
-// Accumulates the normal equations  sum dx (x) dx  g = sum dx dpsi.
-struct LeastSquares {
-  SymMat3 normal_matrix{0, 0, 0, 0, 0, 0};
+// The functions below are written for a scalar Real, a double (one cell) or
+// a pack of cells (CellPack: kCellLanes cells in the lanes of a vector,
+// computeCornerTerms): tests are selections (`?:`), made the same way in
+// every lane, so a cell's numbers are the same bits either way.
 
-  KOKKOS_INLINE_FUNCTION void addOffset(const Vec3& dx) { normal_matrix += outerSelf(dx, 1.0); }
+// Accumulates the normal equations  sum dx (x) dx  g = sum dx dpsi.
+template <class Real>
+struct LeastSquaresOf {
+  SymMat3Of<Real> normal_matrix{Real{}, Real{}, Real{}, Real{}, Real{}, Real{}};
+
+  KOKKOS_INLINE_FUNCTION void addOffset(const Vec3Of<Real>& dx) {
+    normal_matrix += outerSelf(dx, 1.0);
+  }
 
   // Inverse of the normal matrix on the directions the offsets span, zero on
   // the others: a direction without neighbours (a one-cell-thick slab, a 1D
@@ -24,67 +32,76 @@ struct LeastSquares {
   // L. Not a small regularisation: a slab's neighbour centroids are coplanar
   // only to round-off, and a regularised z-gradient grows to many times the
   // in-plane one (docs/method.md §2.1).
-  KOKKOS_INLINE_FUNCTION SymMat3 solver() const {
+  KOKKOS_INLINE_FUNCTION SymMat3Of<Real> solver() const {
     constexpr double kDegeneratePivot = 1e-8;
-    const SymMat3& m = normal_matrix;
-    const double tol = kDegeneratePivot * trace(m);
+    const SymMat3Of<Real>& m = normal_matrix;
+    const Real tol = kDegeneratePivot * trace(m);
     // m = L D L^T, L unit lower triangular
-    double d[3], l10 = 0.0, l20 = 0.0, l21 = 0.0;
-    bool kept[3];
-    d[0] = m.xx;
-    kept[0] = d[0] > tol;
-    if (kept[0]) {
-      l10 = m.xy / d[0];
-      l20 = m.xz / d[0];
-    }
-    d[1] = m.yy - l10 * l10 * d[0];
-    kept[1] = d[1] > tol;
-    if (kept[1]) l21 = (m.yz - l20 * l10 * d[0]) / d[1];
-    d[2] = m.zz - l20 * l20 * d[0] - l21 * l21 * d[1];
-    kept[2] = d[2] > tol;
+    const Real d0 = m.xx;
+    const auto kept0 = d0 > tol;
+    const Real l10 = kept0 ? m.xy / d0 : Real{};
+    const Real l20 = kept0 ? m.xz / d0 : Real{};
+    const Real d1 = m.yy - l10 * l10 * d0;
+    const auto kept1 = d1 > tol;
+    const Real l21 = kept1 ? (m.yz - l20 * l10 * d0) / d1 : Real{};
+    const Real d2 = m.zz - l20 * l20 * d0 - l21 * l21 * d1;
+    const auto kept2 = d2 > tol;
     // m^+ = L^-T D^+ L^-1, with the rows of L^-1 = [[1,0,0],[a,1,0],[b,c,1]]
-    const double a = -l10, c = -l21, b = l10 * l21 - l20;
-    const double d0 = kept[0] ? 1.0 / d[0] : 0.0;
-    const double d1 = kept[1] ? 1.0 / d[1] : 0.0;
-    const double d2 = kept[2] ? 1.0 / d[2] : 0.0;
+    const Real a = -l10, c = -l21, b = l10 * l21 - l20;
+    const Real inv0 = kept0 ? 1.0 / d0 : Real{};
+    const Real inv1 = kept1 ? 1.0 / d1 : Real{};
+    const Real inv2 = kept2 ? 1.0 / d2 : Real{};
     // (m^+)_ij = sum_k (L^-1)_ki d_k (L^-1)_kj
-    return SymMat3{d0 + a * a * d1 + b * b * d2, d1 + c * c * d2, d2,
-                   a * d1 + b * c * d2,          c * d2,          b * d2};
+    return {inv0 + a * a * inv1 + b * b * inv2, inv1 + c * c * inv2, inv2,
+            a * inv1 + b * c * inv2,            c * inv2,            b * inv2};
   }
 };
+using LeastSquares = LeastSquaresOf<double>;
 
 // Running min/max of a scalar over a stencil.
-struct Bounds {
-  double lo, hi;
-  KOKKOS_INLINE_FUNCTION explicit Bounds(double value) : lo(value), hi(value) {}
-  KOKKOS_INLINE_FUNCTION void include(double value) {
+template <class Real>
+struct BoundsOf {
+  Real lo, hi;
+  KOKKOS_INLINE_FUNCTION explicit BoundsOf(Real value) : lo(value), hi(value) {}
+  KOKKOS_INLINE_FUNCTION void include(Real value) {
     lo = value < lo ? value : lo;
     hi = value > hi ? value : hi;
   }
 };
+using Bounds = BoundsOf<double>;
 
 // Largest rise and fall of the unlimited reconstruction over a cell's vertices.
-struct VertexExcursion {
-  double rise = 0.0, fall = 0.0;  // max(psi_p - psi_c, 0), min(psi_p - psi_c, 0)
-  KOKKOS_INLINE_FUNCTION void include(double delta) {
+template <class Real>
+struct VertexExcursionOf {
+  Real rise{}, fall{};  // max(psi_p - psi_c, 0), min(psi_p - psi_c, 0)
+  KOKKOS_INLINE_FUNCTION void include(Real delta) {
     rise = delta > rise ? delta : rise;
     fall = delta < fall ? delta : fall;
   }
 };
+using VertexExcursion = VertexExcursionOf<double>;
 
 // min over the vertices of vertexLimiter() below, with two divisions instead of
 // one per vertex: the ratio (bound - psi_c) / delta is smallest for the largest
 // rise (resp. fall), so only the extreme vertices matter.
-KOKKOS_INLINE_FUNCTION double cellLimiter(const VertexExcursion& excursion, double center,
-                                          const Bounds& bounds, double beta) {
-  double limiter = beta;
-  if (excursion.rise > 0.0) {
-    const double ratio = (bounds.hi - center) / excursion.rise;
-    limiter = ratio < limiter ? ratio : limiter;
-  }
-  if (excursion.fall < 0.0) {
-    const double ratio = (bounds.lo - center) / excursion.fall;
-    limiter = ratio < limiter ? ratio : limiter;
+template <class Real>
+KOKKOS_INLINE_FUNCTION Real cellLimiter(const VertexExcursionOf<Real>& excursion, Real center,
+                                        const BoundsOf<Real>& bounds, double beta) {
+  Real limiter = splat<Real>(beta);
+  if constexpr (std::is_same_v<Real, double>) {  // (a division only where it is needed)
+    if (excursion.rise > 0.0) {
+      const double ratio = (bounds.hi - center) / excursion.rise;
+      limiter = ratio < limiter ? ratio : limiter;
+    }
+    if (excursion.fall < 0.0) {
+      const double ratio = (bounds.lo - center) / excursion.fall;
+      limiter = ratio < limiter ? ratio : limiter;
+    }
+  } else {
+    const Real up = (bounds.hi - center) / excursion.rise;
+    limiter = excursion.rise > Real{} && up < limiter ? up : limiter;
+    const Real down = (bounds.lo - center) / excursion.fall;
+    limiter = excursion.fall < Real{} && down < limiter ? down : limiter;
   }
   return limiter;
 }
@@ -137,15 +154,16 @@ KOKKOS_INLINE_FUNCTION double vertexLimiter(double delta, double center, const B
 // final minimum over the vertices is a scalar loop, in vertex order.
 // kVertices = 4: the bottom vertices of a z prism alone, where the top ones
 // would repeat their numbers (computeCornerTerms; the same minimum).
-template <bool plateau_guard, bool vertex_sums, int kVertices = kHexVertices>
-KOKKOS_INLINE_FUNCTION double projectedLimiter(const Vec3 jumps[6], const VertexVectors& directions,
-                                               const double length2[8]) {
+template <bool plateau_guard, bool vertex_sums, int kVertices = kHexVertices, class Real>
+KOKKOS_INLINE_FUNCTION Real projectedLimiter(const Vec3Of<Real> jumps[6],
+                                             const VertexVectorsOf<Real>& directions,
+                                             const Real length2[8]) {
   // (the faces holding vertex p in the VTK hexahedron: x+ for p = 1, 2, 5, 6,
   // y+ for p & 2, z+ for p & 4)
   constexpr bool kOnXPlus[kHexVertices] = {false, true, true, false, false, true, true, false};
-  double toward[kHexVertices], away[kHexVertices];
-  for (int p = 0; p < kVertices; ++p) toward[p] = away[p] = 0.0;
-  double along[6][kHexVertices];
+  Real toward[kHexVertices], away[kHexVertices];
+  for (int p = 0; p < kVertices; ++p) toward[p] = away[p] = Real{};
+  Real along[6][kHexVertices];
   for (int f = 0; f < 6; ++f) {
     dotEach<kVertices>(jumps[f], directions, along[f]);
     LAGREMAP_LANES
@@ -157,11 +175,11 @@ KOKKOS_INLINE_FUNCTION double projectedLimiter(const Vec3 jumps[6], const Vertex
   if (vertex_sums) {
     LAGREMAP_LANES
     for (int p = 0; p < kVertices; ++p) {
-      const double fx = kOnXPlus[p] ? along[1][p] : along[0][p];
-      const double fy = (p & 2) ? along[3][p] : along[2][p];
-      const double fz = (p & 4) ? along[5][p] : along[4][p];
-      const double sums[4] = {fx + fy, fy + fz, fx + fz, fx + fy + fz};
-      for (const double sum : sums) {
+      const Real fx = kOnXPlus[p] ? along[1][p] : along[0][p];
+      const Real fy = (p & 2) ? along[3][p] : along[2][p];
+      const Real fz = (p & 4) ? along[5][p] : along[4][p];
+      const Real sums[4] = {fx + fy, fy + fz, fx + fz, fx + fy + fz};
+      for (const Real& sum : sums) {
         toward[p] = sum > toward[p] ? sum : toward[p];
         if (plateau_guard) away[p] = -sum > away[p] ? -sum : away[p];
       }
@@ -170,16 +188,26 @@ KOKKOS_INLINE_FUNCTION double projectedLimiter(const Vec3 jumps[6], const Vertex
   // phi <= reach / length2, with the guard's f = (1 + r^2)/2 multiplied
   // out (r = toward/away): one division, and only where a vertex lowers
   // phi (never for length2 = 0)
-  double reach[kHexVertices], length2_scaled[kHexVertices];
+  Real reach[kHexVertices], length2_scaled[kHexVertices];
   LAGREMAP_LANES
   for (int p = 0; p < kVertices; ++p) {
-    const bool guarded = plateau_guard && toward[p] < away[p];
-    reach[p] = guarded ? 0.5 * toward[p] * (away[p] * away[p] + toward[p] * toward[p]) : toward[p];
-    length2_scaled[p] = guarded ? length2[p] * (away[p] * away[p]) : length2[p];
+    if constexpr (plateau_guard) {
+      const auto guarded = toward[p] < away[p];
+      reach[p] = guarded ? 0.5 * toward[p] * (away[p] * away[p] + toward[p] * toward[p])
+                         : toward[p];
+      length2_scaled[p] = guarded ? length2[p] * (away[p] * away[p]) : length2[p];
+    } else {
+      reach[p] = toward[p];
+      length2_scaled[p] = length2[p];
+    }
   }
-  double limiter = 1.0;
+  Real limiter = splat<Real>(1.0);
   for (int p = 0; p < kVertices; ++p) {
-    if (reach[p] < limiter * length2_scaled[p]) limiter = reach[p] / length2_scaled[p];
+    if constexpr (std::is_same_v<Real, double>) {
+      if (reach[p] < limiter * length2_scaled[p]) limiter = reach[p] / length2_scaled[p];
+    } else {
+      limiter = reach[p] < limiter * length2_scaled[p] ? reach[p] / length2_scaled[p] : limiter;
+    }
   }
   return limiter;
 }
@@ -199,10 +227,11 @@ KOKKOS_INLINE_FUNCTION double projectedLimiter(const Vec3 jumps[6], const Vec3 d
 // j : delta_p = (G^T j) . d_p; returns w = G^T j. (|delta_p|^2, the limiter's
 // length2, is the Frobenius square of the excursion delta_p = G d_p itself,
 // which the caller has at hand.)
-KOKKOS_INLINE_FUNCTION void pullBack(const Vec3 gradients[6], const SymMat3 jumps[6],
-                                     Vec3 pulled[6]) {
+template <class Real>
+KOKKOS_INLINE_FUNCTION void pullBack(const Vec3Of<Real> gradients[6], const SymMat3Of<Real> jumps[6],
+                                     Vec3Of<Real> pulled[6]) {
   for (int j = 0; j < 6; ++j) {
-    const SymMat3& t = jumps[j];
+    const SymMat3Of<Real>& t = jumps[j];
     pulled[j] = t.xx * gradients[0] + t.yy * gradients[1] + t.zz * gradients[2] +
                 (2.0 * t.xy) * gradients[3] + (2.0 * t.yz) * gradients[4] +
                 (2.0 * t.xz) * gradients[5];
@@ -212,9 +241,10 @@ KOKKOS_INLINE_FUNCTION void pullBack(const Vec3 gradients[6], const SymMat3 jump
 // Jump of a symmetric tensor to its mirror image across a plane of unit normal
 // n (the wall ghost of the stencil): R T R - T with R = I - 2 n (x) n, i.e.
 //   -2 (n (x) Tn + Tn (x) n) + 4 (n.Tn) n (x) n.
-KOKKOS_INLINE_FUNCTION SymMat3 mirrorJump(const SymMat3& t, const Vec3& n) {
-  const Vec3 tn = t * n;
-  const double nn4 = 4.0 * dot(n, tn);
+template <class Real>
+KOKKOS_INLINE_FUNCTION SymMat3Of<Real> mirrorJump(const SymMat3Of<Real>& t, const Vec3Of<Real>& n) {
+  const Vec3Of<Real> tn = t * n;
+  const Real nn4 = 4.0 * dot(n, tn);
   return {nn4 * n.x * n.x - 4.0 * n.x * tn.x,
           nn4 * n.y * n.y - 4.0 * n.y * tn.y,
           nn4 * n.z * n.z - 4.0 * n.z * tn.z,
