@@ -79,7 +79,8 @@ template <class Real, class View>
 KOKKOS_FORCEINLINE_FUNCTION SymMat3Of<Real> loadSymLanes(const View& v, const CellLanes<Real>& at) {
   SymMat3Of<Real> m;
   Real* entries[6] = {&m.xx, &m.yy, &m.zz, &m.xy, &m.yz, &m.xz};
-  for (int j = 0; j < 6; ++j) *entries[j] = gatherLanes<Real>([&](int i) { return v(at.cell[i], j); });
+  for (int j = 0; j < 6; ++j)
+    *entries[j] = gatherLanes<Real>([&](int i) { return v(at.cell[i], j); });
   return m;
 }
 template <class Real, class View>
@@ -160,13 +161,10 @@ struct CornerStencil {
 // whose z faces lie in the planes z_0 and z_0 + h: their mirror images are h
 // away along -+e_z.
 template <class Real>
-KOKKOS_FORCEINLINE_FUNCTION void gatherStencil(const State& s, const Index nb[6][kLanesOf<Real>],
-                                               const StencilFace faces[6], bool z_prism,
-                                               const CellLanes<Real>& cells,
-                                               const Vec3Of<Real> x[8], const Vec3Of<Real>& v_cell,
-                                               const Real& p_cell,
-                                               const SymMat3Of<Real>& sigma_cell, bool solid,
-                                               CornerStencil<Real>& st) {
+KOKKOS_FORCEINLINE_FUNCTION void gatherStencil(
+    const State& s, const Index nb[6][kLanesOf<Real>], const StencilFace faces[6], bool z_prism,
+    const CellLanes<Real>& cells, const Vec3Of<Real> x[8], const Vec3Of<Real>& v_cell,
+    const Real& p_cell, const SymMat3Of<Real>& sigma_cell, bool solid, CornerStencil<Real>& st) {
   const Vec3Of<Real> centroid = loadVec3Lanes(s.x_c, cells);
   for (int i = 0; i < (solid ? 6 : 0); ++i) st.rhs_sigma[i] = zeroVec3<Real>();
   for (int f = 0; f < 6; ++f) {
@@ -269,12 +267,9 @@ struct VertexTensors {
 // acoustic bound |d sigma| <= rho aL^2; the unlimited excursions G d_p give
 // both the node values and the limiter's lengths.
 template <int kVertices, class Real>
-KOKKOS_FORCEINLINE_FUNCTION void limitedNodeStresses(const CornerStencil<Real>& st,
-                                                     const SymMat3Of<Real>& inv,
-                                                     const VertexVectorsOf<Real>& offsets,
-                                                     const SymMat3Of<Real>& sigma_cell,
-                                                     const Real& stress_scale,
-                                                     VertexTensors<Real>& sigma_node) {
+KOKKOS_FORCEINLINE_FUNCTION void limitedNodeStresses(
+    const CornerStencil<Real>& st, const SymMat3Of<Real>& inv, const VertexVectorsOf<Real>& offsets,
+    const SymMat3Of<Real>& sigma_cell, const Real& stress_scale, VertexTensors<Real>& sigma_node) {
   Vec3Of<Real> grad_sigma[6];
   for (int i = 0; i < 6; ++i) grad_sigma[i] = inv * st.rhs_sigma[i];
   VertexTensors<Real> excursion;
@@ -407,11 +402,11 @@ struct CornerTerms {
     const Vec3Of<Real> v_cell = loadVec3Lanes(s.v_c, cells);
     const Real p_cell = loadLanes(s.p_c, cells);
     const bool solid = s.aT_c(first) > 0.0;  // some material with strength in the cell
-    const SymMat3Of<Real> sigma_cell = solid ? loadSymLanes(s.S_c, cells) + identitySym(-p_cell)
-                                             : identitySym(-p_cell);
+    const SymMat3Of<Real> sigma_cell =
+        solid ? loadSymLanes(s.S_c, cells) + identitySym(-p_cell) : identitySym(-p_cell);
     VertexVectorsOf<Real> v_node;
-    Real p_node[kHexVertices];        // fluid: sigma = -p I
-    VertexTensors<Real> sigma_node;   // solid
+    Real p_node[kHexVertices];       // fluid: sigma = -p I
+    VertexTensors<Real> sigma_node;  // solid
     if (!second_order) {
       for (int p = 0; p < kHexVertices; ++p) {
         v_node.set(p, v_cell);
@@ -459,8 +454,7 @@ struct CornerTerms {
     // does not take the tests out of the loop by itself)
     const auto storeRhs = [&](int p, const CellLanes<Real>& corners,
                               const Vec3Of<Real>& stress_force) {
-      storeVec3Lanes(s.B_cp, corners,
-                     loadSymLanes(s.M_cp, corners) * v_node[p] + stress_force);
+      storeVec3Lanes(s.B_cp, corners, loadSymLanes(s.M_cp, corners) * v_node[p] + stress_force);
     };
     for (int p = 0; p < 8; ++p) {
       CellLanes<Real> corners;
@@ -494,9 +488,14 @@ struct CornerTerms {
 // cell by cell, docs/method.md §7.1).
 inline void computeCornerTerms(const Mesh& mesh, const State& state,
                                const CornerControls& controls) {
-  const detail::CornerTerms terms{mesh.cell_nodes, mesh.cell_neighbors, mesh.cell_face_side,
-                                  mesh.side_kind,  mesh.x_n,            state,
-                                  mesh.z_prisms,   controls.order >= 2,
+  const detail::CornerTerms terms{mesh.cell_nodes,
+                                  mesh.cell_neighbors,
+                                  mesh.cell_face_side,
+                                  mesh.side_kind,
+                                  mesh.x_n,
+                                  state,
+                                  mesh.z_prisms,
+                                  controls.order >= 2,
                                   controls.gather == Gather::Atomics};
   if (terms.atomics) {
     Kokkos::deep_copy(state.M_n, 0.0);

@@ -52,8 +52,12 @@ struct LeastSquaresOf {
     const Real inv1 = kept1 ? 1.0 / d1 : Real{};
     const Real inv2 = kept2 ? 1.0 / d2 : Real{};
     // (m^+)_ij = sum_k (L^-1)_ki d_k (L^-1)_kj
-    return {inv0 + a * a * inv1 + b * b * inv2, inv1 + c * c * inv2, inv2,
-            a * inv1 + b * c * inv2,            c * inv2,            b * inv2};
+    return {inv0 + a * a * inv1 + b * b * inv2,
+            inv1 + c * c * inv2,
+            inv2,
+            a * inv1 + b * c * inv2,
+            c * inv2,
+            b * inv2};
   }
 };
 using LeastSquares = LeastSquaresOf<double>;
@@ -193,8 +197,8 @@ KOKKOS_INLINE_FUNCTION Real projectedLimiter(const Vec3Of<Real> jumps[6],
   for (int p = 0; p < kVertices; ++p) {
     if constexpr (plateau_guard) {
       const auto guarded = toward[p] < away[p];
-      reach[p] = guarded ? 0.5 * toward[p] * (away[p] * away[p] + toward[p] * toward[p])
-                         : toward[p];
+      reach[p] =
+          guarded ? 0.5 * toward[p] * (away[p] * away[p] + toward[p] * toward[p]) : toward[p];
       length2_scaled[p] = guarded ? length2[p] * (away[p] * away[p]) : length2[p];
     } else {
       reach[p] = toward[p];
@@ -228,8 +232,8 @@ KOKKOS_INLINE_FUNCTION double projectedLimiter(const Vec3 jumps[6], const Vec3 d
 // length2, is the Frobenius square of the excursion delta_p = G d_p itself,
 // which the caller has at hand.)
 template <class Real>
-KOKKOS_INLINE_FUNCTION void pullBack(const Vec3Of<Real> gradients[6], const SymMat3Of<Real> jumps[6],
-                                     Vec3Of<Real> pulled[6]) {
+KOKKOS_INLINE_FUNCTION void pullBack(const Vec3Of<Real> gradients[6],
+                                     const SymMat3Of<Real> jumps[6], Vec3Of<Real> pulled[6]) {
   for (int j = 0; j < 6; ++j) {
     const SymMat3Of<Real>& t = jumps[j];
     pulled[j] = t.xx * gradients[0] + t.yy * gradients[1] + t.zz * gradients[2] +
