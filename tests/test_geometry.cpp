@@ -299,6 +299,14 @@ TEST(Geometry, MeshKernelsConserveVolumeAndCancelAtInteriorNodes) {
   EXPECT_EQ(interior, 6 * 4 * 3);
 }
 
+// The corner kernel one cell at a time (a free function: nvcc refuses an
+// extended lambda in a test body).
+void cornerTermsCellByCell(const detail::CornerTerms& terms, Index n_cells) {
+  Kokkos::parallel_for(
+      "test::corner_terms_cell_by_cell", Kokkos::RangePolicy<ExecSpace>(0, n_cells),
+      KOKKOS_LAMBDA(const Index c) { terms.ofCells<double>(c); });
+}
+
 // The corner kernel takes kCellLanes cells at once in the lanes of a vector
 // where their stencils have one shape (detail::CornerTerms): its corner
 // terms must be the bits of the same kernel run cell by cell. A perturbed
@@ -350,9 +358,7 @@ TEST(CornerTerms, CellLanesGiveTheCellByCellBits) {
     for (Index first = 0; first + hex::kCellLanes <= mesh.n_cells; first += hex::kCellLanes) {
       shared_shapes += terms.lanesShareStencilShape(first, hex::kCellLanes);
     }
-    Kokkos::parallel_for(
-        "test::corner_terms_cell_by_cell", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
-        KOKKOS_LAMBDA(const Index c) { terms.ofCells<double>(c); });
+    cornerTermsCellByCell(terms, mesh.n_cells);
     const auto cells = Kokkos::create_mirror_view_and_copy(HostSpace(), state.B_cp);
     if (hex::kCellLanes > 1) {
       EXPECT_GE(shared_shapes, mesh.n_cells / (3 * hex::kCellLanes));  // the middle of each row
