@@ -163,9 +163,8 @@ struct CornerStencil {
 template <class Real>
 KOKKOS_FORCEINLINE_FUNCTION void gatherStencil(
     const State& s, const Index nb[6][kLanesOf<Real>], const StencilFace faces[6], bool z_prism,
-    const CellLanes<Real>& cells, const Vec3Of<Real> x[8], const Vec3Of<Real>& v_cell,
+    const Vec3Of<Real>& centroid, const Vec3Of<Real> x[8], const Vec3Of<Real>& v_cell,
     const Real& p_cell, const SymMat3Of<Real>& sigma_cell, bool solid, CornerStencil<Real>& st) {
-  const Vec3Of<Real> centroid = loadVec3Lanes(s.x_c, cells);
   for (int i = 0; i < (solid ? 6 : 0); ++i) st.rhs_sigma[i] = zeroVec3<Real>();
   for (int f = 0; f < 6; ++f) {
     Vec3Of<Real> dx, dv, normal;
@@ -259,6 +258,14 @@ struct VertexTensors {
   Real c[6][kHexVertices];
   KOKKOS_INLINE_FUNCTION SymMat3Of<Real> operator[](int p) const {
     return {c[0][p], c[1][p], c[2][p], c[3][p], c[4][p], c[5][p]};
+  }
+  KOKKOS_INLINE_FUNCTION void set(int p, const SymMat3Of<Real>& t) {
+    c[0][p] = t.xx;
+    c[1][p] = t.yy;
+    c[2][p] = t.zz;
+    c[3][p] = t.xy;
+    c[4][p] = t.yz;
+    c[5][p] = t.xz;
   }
 };
 
@@ -411,11 +418,7 @@ struct CornerTerms {
       for (int p = 0; p < kHexVertices; ++p) {
         v_node.set(p, v_cell);
         p_node[p] = p_cell;
-        for (int i = 0; i < 6; ++i) {
-          const Real entries[6] = {sigma_cell.xx, sigma_cell.yy, sigma_cell.zz,
-                                   sigma_cell.xy, sigma_cell.yz, sigma_cell.xz};
-          sigma_node.c[i][p] = entries[i];
-        }
+        sigma_node.set(p, sigma_cell);
       }
     } else {
       Vec3Of<Real> x[8];
@@ -430,10 +433,11 @@ struct CornerTerms {
         faces[f] = stencilFace(neighbors, face_side, side_kind, first, f);
         for (int i = 0; i < kLanesOf<Real>; ++i) nb[f][i] = neighbors(cells.cell[i], f);
       }
-      CornerStencil<Real> stencil(p_cell);
-      gatherStencil(s, nb, faces, z_prisms, cells, x, v_cell, p_cell, sigma_cell, solid, stencil);
-      const SymMat3Of<Real> inv = stencil.lsq.solver();
       const Vec3Of<Real> centroid = loadVec3Lanes(s.x_c, cells);
+      CornerStencil<Real> stencil(p_cell);
+      gatherStencil(s, nb, faces, z_prisms, centroid, x, v_cell, p_cell, sigma_cell, solid,
+                    stencil);
+      const SymMat3Of<Real> inv = stencil.lsq.solver();
       VertexVectorsOf<Real> offsets;
       LAGREMAP_LANES
       for (int p = 0; p < kHexVertices; ++p) offsets.set(p, x[p] - centroid);
@@ -477,6 +481,20 @@ struct CornerTerms {
   }
 };
 
+// The corner terms of a mesh's cells under `controls`.
+inline CornerTerms cornerTerms(const Mesh& mesh, const State& state,
+                               const CornerControls& controls) {
+  return {mesh.cell_nodes,
+          mesh.cell_neighbors,
+          mesh.cell_face_side,
+          mesh.side_kind,
+          mesh.x_n,
+          state,
+          mesh.z_prisms,
+          controls.order >= 2,
+          controls.gather == Gather::Atomics};
+}
+
 }  // namespace detail
 
 // Per cell: V and sigma reconstructed at its nodes (DESIGN §3: piecewise
@@ -488,15 +506,7 @@ struct CornerTerms {
 // cell by cell, docs/method.md §7.1).
 inline void computeCornerTerms(const Mesh& mesh, const State& state,
                                const CornerControls& controls) {
-  const detail::CornerTerms terms{mesh.cell_nodes,
-                                  mesh.cell_neighbors,
-                                  mesh.cell_face_side,
-                                  mesh.side_kind,
-                                  mesh.x_n,
-                                  state,
-                                  mesh.z_prisms,
-                                  controls.order >= 2,
-                                  controls.gather == Gather::Atomics};
+  const detail::CornerTerms terms = detail::cornerTerms(mesh, state, controls);
   if (terms.atomics) {
     Kokkos::deep_copy(state.M_n, 0.0);
     Kokkos::deep_copy(state.B_n, 0.0);

@@ -345,15 +345,8 @@ TEST(CornerTerms, CellLanesGiveTheCellByCellBits) {
     const auto lanes = Kokkos::create_mirror(HostSpace(), state.B_cp);
     Kokkos::deep_copy(lanes, state.B_cp);
     Kokkos::deep_copy(state.B_cp, 0.0);
-    const detail::CornerTerms terms{mesh.cell_nodes,
-                                    mesh.cell_neighbors,
-                                    mesh.cell_face_side,
-                                    mesh.side_kind,
-                                    mesh.x_n,
-                                    state,
-                                    mesh.z_prisms,
-                                    true,
-                                    false};
+    const detail::CornerTerms terms =
+        detail::cornerTerms(mesh, state, CornerControls{2, Gather::Crs});
     int shared_shapes = 0;
     for (Index first = 0; first + hex::kCellLanes <= mesh.n_cells; first += hex::kCellLanes) {
       shared_shapes += terms.lanesShareStencilShape(first, hex::kCellLanes);
