@@ -50,7 +50,9 @@ namespace {
 
 // Writes a snapshot of this rank's owned cells and nodes, numbered globally
 // (all of them on one rank); `fields` are the rank's host copies (copyFields
-// without gathering). Collective over the ranks.
+// without gathering). Each field is packed into the writer's one buffer when
+// its turn comes (io::CellField::fill), so the snapshot costs this rank one
+// field of its owned cells, not all of them. Collective over the ranks.
 void writeSnapshot(io::SnapshotSeries& series, const FinalFields& fields, const Mesh& mesh) {
   const auto cell_owned = Kokkos::create_mirror_view_and_copy(HostSpace(), mesh.cell_owned);
   const auto node_owned = Kokkos::create_mirror_view_and_copy(HostSpace(), mesh.node_owned);
@@ -66,54 +68,54 @@ void writeSnapshot(io::SnapshotSeries& series, const FinalFields& fields, const 
     nodes.push_back(n);
     node_rows.push_back(mesh.node_global(n));
   }
-  const std::size_t n_cells = cells.size(), n_nodes = nodes.size();
-  std::vector<double> xyz(3 * n_nodes), velocity(3 * n_cells), deviator(6 * n_cells);
-  std::vector<std::int64_t> connectivity(8 * n_cells);
-  for (std::size_t i = 0; i < n_nodes; ++i)
-    for (int d = 0; d < 3; ++d) xyz[3 * i + d] = fields.mesh.x_n(nodes[i], d);
-  // One scalar per owned cell.
-  auto scalars = [&](auto value) {
-    std::vector<double> column(n_cells);
-    for (std::size_t i = 0; i < n_cells; ++i) column[i] = value(cells[i]);
-    return column;
+  // A field of `components` values per owned cell, value(c, d) of local cell c.
+  auto field = [&](std::string name, int components, auto value) {
+    return io::CellField{std::move(name), nullptr, components,
+                         [&cells, components, value](double* out) {
+                           for (std::size_t i = 0; i < cells.size(); ++i)
+                             for (int d = 0; d < components; ++d)
+                               out[components * i + d] = value(cells[i], d);
+                         }};
   };
-  for (std::size_t i = 0; i < n_cells; ++i) {
-    const Index c = cells[i];
-    for (int p = 0; p < 8; ++p)
-      connectivity[8 * i + p] = mesh.node_global(fields.mesh.cell_nodes(c, p));
-    for (int d = 0; d < 3; ++d) velocity[3 * i + d] = fields.v(c, d);
-    for (int k = 0; k < 6; ++k) deviator[6 * i + k] = fields.S(c, k);
-  }
-  std::vector<std::vector<double>> columns = {scalars([&](Index c) { return fields.rho(c); }),
-                                              scalars([&](Index c) { return fields.p(c); }),
-                                              scalars([&](Index c) { return fields.e(c); }),
-                                              scalars([&](Index c) { return fields.vol(c); })};
   std::vector<io::CellField> cell_fields = {
-      {"density", columns[0].data(), 1},         {"pressure", columns[1].data(), 1},
-      {"internal_energy", columns[2].data(), 1}, {"volume", columns[3].data(), 1},
-      {"velocity", velocity.data(), 3},          {"deviatoric_stress", deviator.data(), 6}};
+      field("density", 1, [&](Index c, int) { return fields.rho(c); }),
+      field("pressure", 1, [&](Index c, int) { return fields.p(c); }),
+      field("internal_energy", 1, [&](Index c, int) { return fields.e(c); }),
+      field("volume", 1, [&](Index c, int) { return fields.vol(c); }),
+      field("velocity", 3, [&](Index c, int d) { return fields.v(c, d); }),
+      field("deviatoric_stress", 6, [&](Index c, int k) { return fields.S(c, k); })};
   // Multi-material problems: each material's volume fraction, density
   // m^k / (alpha^k v), specific internal energy and pressure (0 where absent).
   const int n_materials = int(fields.alpha.extent(1));
-  columns.reserve(columns.size() + 4 * std::size_t(n_materials));
   for (int k = 0; n_materials > 1 && k < n_materials; ++k) {
-    auto present = [&](Index c) { return fields.alpha(c, k) > 0.0; };
-    columns.push_back(scalars([&](Index c) { return fields.alpha(c, k); }));
-    columns.push_back(scalars([&](Index c) {
-      return present(c) ? fields.m_k(c, k) / (fields.alpha(c, k) * fields.vol(c)) : 0.0;
-    }));
-    columns.push_back(scalars([&](Index c) { return present(c) ? fields.e_k(c, k) : 0.0; }));
-    columns.push_back(scalars([&](Index c) { return present(c) ? fields.p_k(c, k) : 0.0; }));
+    auto present = [&fields, k](Index c) { return fields.alpha(c, k) > 0.0; };
     const std::string suffix = "_" + std::to_string(k);
-    const std::size_t first = columns.size() - 4;
-    cell_fields.push_back({"volume_fraction" + suffix, columns[first].data(), 1});
-    cell_fields.push_back({"material_density" + suffix, columns[first + 1].data(), 1});
-    cell_fields.push_back({"material_internal_energy" + suffix, columns[first + 2].data(), 1});
-    cell_fields.push_back({"material_pressure" + suffix, columns[first + 3].data(), 1});
+    cell_fields.push_back(field("volume_fraction" + suffix, 1,
+                                [&fields, k](Index c, int) { return fields.alpha(c, k); }));
+    cell_fields.push_back(
+        field("material_density" + suffix, 1, [&fields, k, present](Index c, int) {
+          return present(c) ? fields.m_k(c, k) / (fields.alpha(c, k) * fields.vol(c)) : 0.0;
+        }));
+    cell_fields.push_back(
+        field("material_internal_energy" + suffix, 1,
+              [&fields, k, present](Index c, int) { return present(c) ? fields.e_k(c, k) : 0.0; }));
+    cell_fields.push_back(
+        field("material_pressure" + suffix, 1,
+              [&fields, k, present](Index c, int) { return present(c) ? fields.p_k(c, k) : 0.0; }));
   }
-  const io::SnapshotMesh snapshot_mesh{
-      std::int64_t(n_nodes), xyz.data(),       std::int64_t(n_cells), connectivity.data(),
-      node_rows.data(),      cell_rows.data(), mesh.n_global_nodes,   mesh.n_global_cells};
+  io::SnapshotMesh snapshot_mesh{std::int64_t(nodes.size()), nullptr,
+                                 std::int64_t(cells.size()), nullptr,
+                                 node_rows.data(),           cell_rows.data(),
+                                 mesh.n_global_nodes,        mesh.n_global_cells};
+  snapshot_mesh.fill_node_xyz = [&](double* out) {
+    for (std::size_t i = 0; i < nodes.size(); ++i)
+      for (int d = 0; d < 3; ++d) out[3 * i + d] = fields.mesh.x_n(nodes[i], d);
+  };
+  snapshot_mesh.fill_cell_nodes = [&](std::int64_t* out) {
+    for (std::size_t i = 0; i < cells.size(); ++i)
+      for (int p = 0; p < 8; ++p)
+        out[8 * i + p] = mesh.node_global(fields.mesh.cell_nodes(cells[i], p));
+  };
   series.write(fields.time, snapshot_mesh, cell_fields);
 }
 

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <hdf5.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
@@ -15,6 +16,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -283,6 +285,57 @@ TEST(SnapshotWriter, UnwritableDirectoryThrows) {
     EXPECT_EQ(what.find('\n'), std::string::npos) << what;
   }
   EXPECT_EQ(series.count(), 0);
+}
+
+// Fields and mesh arrays given by functions (packed one at a time into the
+// writer's buffer) give the file that the same values given as arrays give;
+// a filled connectivity is checked like a given one.
+TEST(SnapshotWriter, FilledArraysWriteTheGivenArraysFile) {
+  TempDir tmp;
+  const Block block(3, 2, 2);
+  std::vector<double> density, stress;
+  for (std::int64_t c = 0; c < block.n_cells(); ++c) {
+    density.push_back(1.0 / (3.0 + double(c)));
+    for (int k = 0; k < 6; ++k) stress.push_back(double(c) - k / 7.0);
+  }
+  SnapshotSeries given(tmp.path().string(), "given"), filled(tmp.path().string(), "filled");
+  given.write(0.25, block.mesh(), {{"density", density.data(), 1}, {"stress", stress.data(), 6}});
+  const auto copy = [](const std::vector<double>& from) {
+    return [&from](double* out) { std::copy(from.begin(), from.end(), out); };
+  };
+  SnapshotMesh mesh{block.n_nodes(), nullptr, block.n_cells(), nullptr};
+  mesh.fill_node_xyz = copy(block.xyz);
+  mesh.fill_cell_nodes = [&](std::int64_t* out) {
+    std::copy(block.conn.begin(), block.conn.end(), out);
+  };
+  filled.write(0.25, mesh,
+               {{"density", nullptr, 1, copy(density)}, {"stress", nullptr, 6, copy(stress)}});
+  const auto read = [&](const char* name, const char* dataset) {
+    const hid_t file = H5Fopen((tmp.path() / name).string().c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    std::vector<hsize_t> dims;
+    auto values = read_dataset<double>(file, dataset, H5T_NATIVE_DOUBLE, &dims);
+    H5Fclose(file);
+    return std::make_pair(values, dims);
+  };
+  for (const char* dataset :
+       {"/mesh/coordinates", "/mesh/connectivity", "/fields/density", "/fields/stress"}) {
+    const auto expected = read("given_00000.h5", dataset);
+    EXPECT_FALSE(expected.first.empty()) << dataset;
+    EXPECT_EQ(read("filled_00000.h5", dataset), expected) << dataset;
+  }
+  std::string xmf = slurp(tmp.path() / "filled_00000.xmf");
+  for (std::size_t at; (at = xmf.find("filled_")) != std::string::npos;)
+    xmf.replace(at, 7, "given_");
+  EXPECT_EQ(xmf, slurp(tmp.path() / "given_00000.xmf"));
+
+  mesh.fill_cell_nodes = [&](std::int64_t* out) {
+    std::copy(block.conn.begin(), block.conn.end(), out);
+    out[5] = block.n_nodes();  // one past the last node
+  };
+  EXPECT_THROW(filled.write(0.5, mesh, {{"density", nullptr, 1, copy(density)}}),
+               std::invalid_argument);
+  EXPECT_EQ(filled.count(), 1);
+  EXPECT_FALSE(fs::exists(tmp.path() / "filled_00001.h5"));
 }
 
 TEST(SnapshotWriter, RejectsInvalidArguments) {

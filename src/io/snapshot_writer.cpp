@@ -30,8 +30,32 @@ std::int64_t globalCells(const SnapshotMesh& mesh) {
   return mesh.n_global_cells >= 0 ? mesh.n_global_cells : mesh.n_cells;
 }
 
+// The connectivity's first node number outside [0, n_global_nodes), as an
+// error message ("" if there is none).
+std::string connectivityError(const std::int64_t* cell_nodes, std::int64_t n_cells,
+                              std::int64_t n_global_nodes) {
+  for (std::int64_t i = 0; i < n_cells * kNodesPerHex; ++i) {
+    const std::int64_t v = cell_nodes[i];
+    if (v < 0 || v >= n_global_nodes)
+      return "cell " + std::to_string(i / kNodesPerHex) + " references node " + std::to_string(v) +
+             " outside [0, " + std::to_string(n_global_nodes) + ")";
+  }
+  return "";
+}
+
+// `data`, or `fill`'s values in `buffer` (resized to n values).
+template <class T>
+const T* valuesOf(const T* data, const std::function<void(T*)>& fill, std::size_t n,
+                  std::vector<T>& buffer) {
+  if (!fill) return data;
+  buffer.resize(n);
+  fill(buffer.data());
+  return buffer.data();
+}
+
 // Writes one complete snapshot file; collective over the ranks (each writes
-// its own rows of every dataset, rank-count independent file contents).
+// its own rows of every dataset, rank-count independent file contents). The
+// filled arrays pass through one buffer each, one after the other.
 void write_snapshot_h5(const std::string& path, double time, const SnapshotMesh& mesh,
                        const std::vector<CellField>& fields) {
   Handle fapl(fileAccess(path), H5Pclose);
@@ -47,14 +71,28 @@ void write_snapshot_h5(const std::string& path, double time, const SnapshotMesh&
   writeScalarAttribute(file.get(), "time", time, path);
   const RowSelection nodes{globalNodes(mesh), mesh.n_nodes, mesh.node_rows};
   const RowSelection cells{globalCells(mesh), mesh.n_cells, mesh.cell_rows};
+  std::vector<double> buffer;
   {
     Handle mesh_group(check(H5Gcreate2(file.get(), "mesh", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
                             "create group /mesh", path),
                       H5Gclose);
+    {  // (the connectivity's buffer is freed before the others are filled)
+      std::vector<std::int64_t> connectivity;
+      const std::int64_t* cell_nodes =
+          valuesOf(mesh.cell_nodes, mesh.fill_cell_nodes, kNodesPerHex * std::size_t(mesh.n_cells),
+                   connectivity);
+      if (mesh.fill_cell_nodes) {  // (given arrays are checked before the file is made)
+        const std::string error =
+            parallel::firstMessage(connectivityError(cell_nodes, mesh.n_cells, globalNodes(mesh)));
+        if (!error.empty())
+          throw std::invalid_argument("lagremap::io::SnapshotSeries::write: " + error);
+      }
+      writeRows(mesh_group.get(), "connectivity", H5T_STD_I64LE, H5T_NATIVE_INT64, cells,
+                kNodesPerHex, cell_nodes, dxpl.get(), path);
+    }
     writeRows(mesh_group.get(), "coordinates", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, nodes, 3,
-              mesh.node_xyz, dxpl.get(), path);
-    writeRows(mesh_group.get(), "connectivity", H5T_STD_I64LE, H5T_NATIVE_INT64, cells,
-              kNodesPerHex, mesh.cell_nodes, dxpl.get(), path);
+              valuesOf(mesh.node_xyz, mesh.fill_node_xyz, 3 * std::size_t(mesh.n_nodes), buffer),
+              dxpl.get(), path);
   }
   {
     Handle field_group(
@@ -63,7 +101,9 @@ void write_snapshot_h5(const std::string& path, double time, const SnapshotMesh&
         H5Gclose);
     for (const CellField& f : fields) {
       writeRows(field_group.get(), f.name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, cells,
-                f.components == 1 ? 0 : f.components, f.data, dxpl.get(), path);
+                f.components == 1 ? 0 : f.components,
+                valuesOf(f.data, f.fill, std::size_t(mesh.n_cells) * f.components, buffer),
+                dxpl.get(), path);
     }
   }
   if (file.close() < 0) failHdf5("H5Fclose", path);
@@ -205,14 +245,12 @@ void validate(double time, const SnapshotMesh& mesh, const std::vector<CellField
   };
   if (!std::isfinite(time)) bad("time is not finite");
   if (mesh.n_nodes < 0 || mesh.n_cells < 0) bad("negative node or cell count");
-  if (mesh.n_nodes > 0 && mesh.node_xyz == nullptr) bad("node_xyz is null");
-  if (mesh.n_cells > 0 && mesh.cell_nodes == nullptr) bad("cell_nodes is null");
-  const std::int64_t n_conn = mesh.n_cells * kNodesPerHex;
-  for (std::int64_t i = 0; i < n_conn; ++i) {
-    const std::int64_t v = mesh.cell_nodes[i];
-    if (v < 0 || v >= globalNodes(mesh))
-      bad("cell " + std::to_string(i / kNodesPerHex) + " references node " + std::to_string(v) +
-          " outside [0, " + std::to_string(globalNodes(mesh)) + ")");
+  if (mesh.n_nodes > 0 && mesh.node_xyz == nullptr && !mesh.fill_node_xyz) bad("node_xyz is null");
+  if (mesh.n_cells > 0 && mesh.cell_nodes == nullptr && !mesh.fill_cell_nodes)
+    bad("cell_nodes is null");
+  if (!mesh.fill_cell_nodes) {
+    const std::string error = connectivityError(mesh.cell_nodes, mesh.n_cells, globalNodes(mesh));
+    if (!error.empty()) bad(error);
   }
   for (std::size_t i = 0; i < fields.size(); ++i) {
     const CellField& f = fields[i];
@@ -220,7 +258,8 @@ void validate(double time, const SnapshotMesh& mesh, const std::vector<CellField
     if (f.name.find_first_of("/:") != std::string::npos || f.name == ".")
       bad("field name '" + f.name + "' must not be '.' or contain '/' or ':'");
     if (f.components < 1) bad("field '" + f.name + "' has components < 1");
-    if (mesh.n_cells > 0 && f.data == nullptr) bad("field '" + f.name + "' has null data");
+    if (mesh.n_cells > 0 && f.data == nullptr && !f.fill)
+      bad("field '" + f.name + "' has null data");
     for (std::size_t j = 0; j < i; ++j)
       if (fields[j].name == f.name) bad("duplicate field name '" + f.name + "'");
   }

@@ -17,6 +17,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -34,10 +35,15 @@ namespace lagremap::io {
 //   components == 9 : full tensor, row-major xx, xy, xz, yx, ... -> "Tensor"
 //   any other count >= 1                -> "Matrix" (n_cells x components)
 // name must be non-empty, unique within one write() call, and contain no '/' or ':'.
+// Instead of `data`, a field may give `fill`, which writes the n_cells * components
+// values into `out` when the field's turn comes: the writer then packs one field at a
+// time into one buffer, so a snapshot costs the memory of its largest field, not of
+// all of them (a caller whose fields are laid out otherwise, e.g. with ghost cells).
 struct CellField {
   std::string name;
   const double* data;
   int components;
+  std::function<void(double* out)> fill = nullptr;
 };
 
 // Host view of the mesh. node_xyz: 3 * n_nodes (x, y, z per node);
@@ -46,6 +52,7 @@ struct CellField {
 // their global rows (increasing) and the global counts; cell_nodes then hold
 // global node numbers. Every rank calls write() (collective MPI-IO); the file
 // is the one a single rank would write.
+// Either array may instead be given by a function filling it (as CellField::fill).
 struct SnapshotMesh {
   std::int64_t n_nodes;
   const double* node_xyz;
@@ -55,6 +62,8 @@ struct SnapshotMesh {
   const std::int64_t* cell_rows = nullptr;  // global row of each cell (null: 0..n_cells-1)
   std::int64_t n_global_nodes = -1;         // -1: n_nodes
   std::int64_t n_global_cells = -1;         // -1: n_cells
+  std::function<void(double* out)> fill_node_xyz = nullptr;
+  std::function<void(std::int64_t* out)> fill_cell_nodes = nullptr;
 };
 
 // A time series of snapshots sharing one directory and one base name.
