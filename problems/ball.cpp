@@ -18,6 +18,7 @@
 #include <iomanip>
 
 #include "../src/diagnostics.hpp"
+#include "../src/exact_sum.hpp"
 #include "../src/problem.hpp"
 
 namespace lagremap {
@@ -135,52 +136,67 @@ double ballCentroidX(const Mesh& mesh, const State& state) {
   return moment.v[1] / moment.v[0];
 }
 
-// Mass, x-momentum and first moment in x of cells (mass m_c = rho_c v_c).
+// Mass, x-momentum and first moment in x of cells (mass m_c = rho_c v_c), and
+// the ball's mass and x-momentum: exact sums over the owned cells and the
+// ranks (ExactSum: the same bits on any rank count).
 struct MassMoments {
-  double mass = 0.0, momentum_x = 0.0, moment_x = 0.0, ball_mass = 0.0;
+  double mass = 0.0, momentum_x = 0.0, moment_x = 0.0, ball_mass = 0.0, ball_momentum_x = 0.0;
+};
+
+// Adds each cell's terms (mass, momentum, moment, ball mass, ball momentum)
+// and returns the totals, summed over the ranks when `distributed`.
+class MomentSums {
+ public:
+  void add(double mass, double v_x, double x, double ball_mass) {
+    sums_[0] += mass;
+    sums_[1] += mass * v_x;
+    sums_[2] += mass * x;
+    sums_[3] += ball_mass;
+    sums_[4] += ball_mass * v_x;
+  }
+  MassMoments totals(bool distributed) {
+    if (distributed) ExactSum::sumOverRanks(sums_);
+    return {sums_[0].value(), sums_[1].value(), sums_[2].value(), sums_[3].value(),
+            sums_[4].value()};
+  }
+
+ private:
+  std::vector<ExactSum> sums_ = std::vector<ExactSum>(5);
 };
 
 // The initial state, rebuilt as the run built it (the sampled volume
-// fractions, initializeState's m = rho v), for the conserved totals: the
-// whole block on every rank, summed in the single-rank order, as the final
-// totals are summed from the gathered fields (the same bits on any rank count).
+// fractions, initializeState's m = rho v): each rank rebuilds its part of
+// the block and sums its owned cells. Collective on a decomposed run.
 MassMoments initialMoments(const Config& config) {
-  MassMoments initial;
-  const parallel::SerialScope whole_block;
   const ProblemSetup setup = setupBall(config);
   std::vector<double> volume;
   std::vector<Vec3> centroid;
   hostCellShapes(copyToHost(setup.mesh), volume, centroid);
+  const auto owned = Kokkos::create_mirror_view_and_copy(HostSpace(), setup.mesh.cell_owned);
   const int n_materials = int(setup.materials.size());
+  MomentSums sums;
   for (std::size_t c = 0; c < volume.size(); ++c) {
-    double mass = 0.0;
+    if (!owned(c)) continue;
+    double mass = 0.0, ball_mass = 0.0;
     for (int k = 0; k < n_materials; ++k) {
       const std::size_t at = c * n_materials + k;
       const double m_k = setup.cells.alpha_k[at] * setup.cells.rho_k[at] * volume[c];
       mass += m_k;
-      if (k == kBall) initial.ball_mass += m_k;
+      if (k == kBall) ball_mass = m_k;
     }
-    initial.mass += mass;
-    initial.momentum_x += mass * setup.cells.v[c].x;
-    initial.moment_x += mass * centroid[c].x;
+    sums.add(mass, setup.cells.v[c].x, centroid[c].x, ball_mass);
   }
-  return initial;
+  return sums.totals(parallel::size() > 1);
 }
 
-// The same totals at t_end, and the ball's x-momentum (ball_momentum).
-MassMoments finalMoments(const FinalFields& fields, double& ball_momentum) {
-  MassMoments final_state;
-  ball_momentum = 0.0;
-  const Index n_cells = Index(fields.rho.extent(0));
-  for (Index c = 0; c < n_cells; ++c) {
-    const double mass = fields.rho(c) * fields.vol(c);
-    final_state.mass += mass;
-    final_state.momentum_x += mass * fields.v(c, 0);
-    final_state.moment_x += mass * fields.x_c(c, 0);
-    final_state.ball_mass += fields.m_k(c, kBall);
-    ball_momentum += fields.m_k(c, kBall) * fields.v(c, 0);
+// The same totals at t_end.
+MassMoments finalMoments(const FinalFields& fields) {
+  MomentSums sums;
+  for (Index c = 0; c < Index(fields.rho.extent(0)); ++c) {
+    if (!fields.counts(c)) continue;
+    sums.add(fields.rho(c) * fields.vol(c), fields.v(c, 0), fields.x_c(c, 0), fields.m_k(c, kBall));
   }
-  return final_state;
+  return sums.totals(fields.distributed);
 }
 
 // On the axis y = ball.y at t_end: the ball's front (its last fall through
@@ -233,14 +249,14 @@ std::vector<Check> finishBall(const Config& config, const FinalFields& fields,
   const BallGeometry g = readBallGeometry(config);
   const double t_end = fields.time;
   const MassMoments initial = initialMoments(config);
-  double ball_momentum = 0.0;
-  const MassMoments final_state = finalMoments(fields, ball_momentum);
+  const MassMoments final_state = finalMoments(fields);
   const AxisPositions axis = axisPositions(config, fields, g);
   const double ball_centroid = fields.probe.empty() ? NAN : fields.probe.back().second;
   const double ball_centroid0 = fields.probe.empty() ? NAN : fields.probe.front().second;
   const double centroid_shift = ball_centroid - ball_centroid0;
   if (!out_dir.empty()) {
-    writeBallCsvs(out_dir, fields, g, centroid_shift, ball_momentum / final_state.ball_mass, axis);
+    writeBallCsvs(out_dir, fields, g, centroid_shift,
+                  final_state.ball_momentum_x / final_state.ball_mass, axis);
   }
   // With nothing pushing on the walls (the gas is at 1e-5 Pa), the total
   // momentum stays the ball's, and the centre of mass of everything moves by
@@ -276,6 +292,7 @@ extern const Problem kBallProblem = {"ball",
                                      finishBall,
                                      ballCentroidX,
                                      "ball_centroid_x",
-                                     {0.0, 0.5e-6, 1.0e-6, 1.5e-6, 2.0e-6, 2.5e-6}};
+                                     {0.0, 0.5e-6, 1.0e-6, 1.5e-6, 2.0e-6, 2.5e-6},
+                                     true};  // the checks read owned cells
 
 }  // namespace lagremap

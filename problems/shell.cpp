@@ -17,6 +17,7 @@
 #include <iomanip>
 
 #include "../src/diagnostics.hpp"
+#include "../src/exact_sum.hpp"
 #include "../src/howell_ball.hpp"
 #include "../src/materials.hpp"
 #include "../src/problem.hpp"
@@ -178,15 +179,18 @@ double innerRadius(const Mesh& mesh, const State& state) {
   return std::sqrt(parallel::sum(gas_inside) / kPi);
 }
 
-// Beryllium area in the slab's plane, sum alpha_be v / dz (remap fields).
+// Beryllium area in the slab's plane, sum alpha_be v / dz (remap fields; an
+// exact sum over the owned cells and the ranks).
 double beAreaOf(const FinalFields& fields) {
-  double area = 0.0;
+  ExactSum area;
   for (Index c = 0; c < Index(fields.vol.extent(0)); ++c) {
+    if (!fields.counts(c)) continue;
     const double dz = fields.mesh.x_n(fields.mesh.cell_nodes(c, 4), 2) -
                       fields.mesh.x_n(fields.mesh.cell_nodes(c, 0), 2);
     area += fields.alpha(c, 0) * fields.vol(c) / dz;
   }
-  return area;
+  if (fields.distributed) area.sumOverRanks();
+  return area.value();
 }
 
 // The stopping inner radius: the smallest one of the probe's history.
@@ -226,21 +230,6 @@ void writeRadii(const std::string& out_dir, const FinalFields& fields, bool rema
     csv << t << ',' << r << ',' << std::sqrt(r * r + ro0 * ro0 - ri0 * ri0);
     if (remap) csv << ',' << std::sqrt(r * r + shell_area);
     csv << '\n';
-  }
-}
-
-// shell_mesh_z0.csv: the in-plane corners (VTK nodes 0-3) and density of every cell.
-void writeMeshZ0(const std::string& out_dir, const FinalFields& fields) {
-  std::ofstream cells;
-  if (!out_dir.empty()) cells.open(out_dir + "/shell_mesh_z0.csv");
-  cells << "x0,y0,x1,y1,x2,y2,x3,y3,density\n" << std::setprecision(8);
-  const Index n_cells = Index(fields.rho.extent(0));
-  for (Index c = 0; c < n_cells; ++c) {
-    for (int p = 0; p < 4; ++p) {
-      const Index node = fields.mesh.cell_nodes(c, p);
-      cells << fields.mesh.x_n(node, 0) << ',' << fields.mesh.x_n(node, 1) << ',';
-    }
-    cells << fields.rho(c) << '\n';
   }
 }
 
@@ -284,14 +273,16 @@ RadiusRange surfaceInnerRadii(const FinalFields& fields) {
   const Index n_cells = Index(fields.rho.extent(0));
   const int nx = fields.nx;
   for (Index c = 0; c < n_cells; ++c) {
-    if (c % nx != 0) continue;  // cells touching the inner surface (i = 0)
-    for (int p : {0, 3}) {      // VTK nodes 0 and 3 lie on the r = Ri side
+    // cells touching the inner surface (i = 0)
+    if (!fields.counts(c) || fields.globalCell(c) % nx != 0) continue;
+    for (int p : {0, 3}) {  // VTK nodes 0 and 3 lie on the r = Ri side
       const Index node = fields.mesh.cell_nodes(c, p);
       const double r = std::hypot(fields.mesh.x_n(node, 0), fields.mesh.x_n(node, 1));
       range.lo = std::min(range.lo, r);
       range.hi = std::max(range.hi, r);
     }
   }
+  if (fields.distributed) range = {parallel::min(range.lo), parallel::max(range.hi)};
   return range;
 }
 
@@ -375,7 +366,7 @@ std::vector<Check> finishShell(const Config& config, const FinalFields& fields,
   const double shell_area = remap ? beAreaOf(fields) / kPi : ro0 * ro0 - ri0 * ri0;
   const double outer_at_stop = std::sqrt(inner_min * inner_min + shell_area);
   writeRadii(out_dir, fields, remap, ri0, ro0, shell_area);
-  writeMeshZ0(out_dir, fields);
+  writeCellOutlines(out_dir.empty() ? "" : out_dir + "/shell_mesh_z0.csv", fields);
   // Roundness of the inner surface at t_end: (max - min) / min of its radius.
   const RadiusRange inner =
       remap ? contourInnerRadii(config, fields, out_dir) : surfaceInnerRadii(fields);
@@ -391,6 +382,8 @@ extern const Problem kShellProblem = {
     setupShell,
     finishShell,
     innerRadius,
-    "inner_radius"};
+    "inner_radius",
+    {},
+    true};  // the checks read owned cells (no gather of the whole fields)
 
 }  // namespace lagremap

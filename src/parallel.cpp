@@ -155,6 +155,18 @@ std::vector<KeyedValue> deliver(const std::vector<KeyedValue>& items, const std:
   return received;
 }
 
+std::vector<double> gatherOnAll(const std::vector<double>& values) {
+  if (size() == 1) return values;
+  const int n_ranks = size(), count = int(values.size());
+  std::vector<int> counts(n_ranks), displs(n_ranks + 1, 0);
+  MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  for (int r = 0; r < n_ranks; ++r) displs[r + 1] = displs[r] + counts[r];
+  std::vector<double> all(static_cast<std::size_t>(displs[n_ranks]));
+  MPI_Allgatherv(values.data(), count, MPI_DOUBLE, all.data(), counts.data(), displs.data(),
+                 MPI_DOUBLE, MPI_COMM_WORLD);
+  return all;
+}
+
 void writeOnRoot(const std::string& text, std::ostream* out) {
   if (size() == 1) {
     if (out) *out << text;

@@ -49,6 +49,10 @@ struct KeyedValue {
 // Sends items[i] to rank to[i]; returns what this rank receives, in rank
 // order (collective; one rank: the items themselves).
 std::vector<KeyedValue> deliver(const std::vector<KeyedValue>& items, const std::vector<int>& to);
+// Every rank's `values`, one after the other in rank order, on every rank
+// (collective; one rank: `values`). For the few cells a check reads along a
+// line, never for a field.
+std::vector<double> gatherOnAll(const std::vector<double>& values);
 // Writes every rank's `text` to `out` on rank 0, in rank order, one rank's
 // at a time (rank 0 never holds more than one rank's text); `out` is only
 // read on rank 0. Collective.

@@ -203,6 +203,11 @@ void fillMaterialRegions(ProblemSetup& setup, const MaterialRegions& regions,
 // order, without the ids. With distributed fields every rank sends its lines
 // to rank 0 (collective); `out` is only written on rank 0.
 void writeRowsInCellOrder(const std::string& keyed_lines, bool distributed, std::ostream& out);
+// The in-plane corners (VTK nodes 0-3) and density of every cell, in cell
+// order, to the CSV at `path` ("x0,y0,x1,y1,x2,y2,x3,y3,density"; the shape
+// of a slab's deformed mesh). Collective with distributed fields; `path`
+// is only written where it is not empty.
+void writeCellOutlines(const std::string& path, const FinalFields& fields);
 // Position along +x where the volume fraction of `material` falls through 0.5
 // on the row of cells nearest to the line y = y_line, z = mid-thickness
 // (linear interpolation between cell centroids), or NAN if it never does.
