@@ -292,7 +292,6 @@ extern const Problem kBallProblem = {"ball",
                                      finishBall,
                                      ballCentroidX,
                                      "ball_centroid_x",
-                                     {0.0, 0.5e-6, 1.0e-6, 1.5e-6, 2.0e-6, 2.5e-6},
-                                     true};  // the checks read owned cells
+                                     {0.0, 0.5e-6, 1.0e-6, 1.5e-6, 2.0e-6, 2.5e-6}};
 
 }  // namespace lagremap

@@ -240,7 +240,6 @@ extern const Problem kBeamProblem = {
     finishBeam,
     tipDisplacement,
     "tip_displacement_y",
-    {},
-    true};  // the checks read the probe's record only, no cell (no gather of the whole fields)
+    {}};
 
 }  // namespace lagremap

@@ -128,7 +128,6 @@ extern const Problem kPileProblem = {
     finishPile,
     wallStress,
     "wall_sigma_xx",
-    {},
-    true};  // the checks read owned cells (no gather of the whole fields)
+    {}};
 
 }  // namespace lagremap

@@ -257,7 +257,6 @@ extern const Problem kSedovProblem = {
     "sedov",      "3D point blast in an octant (symmetry planes), self-similar shock radius",
     declareSedov, setupSedov,
     finishSedov,  nullptr,
-    nullptr,      {},
-    true};  // the checks read owned cells (no gather of the whole fields)
+    nullptr,      {}};
 
 }  // namespace lagremap

@@ -383,7 +383,6 @@ extern const Problem kShellProblem = {
     finishShell,
     innerRadius,
     "inner_radius",
-    {},
-    true};  // the checks read owned cells (no gather of the whole fields)
+    {}};
 
 }  // namespace lagremap

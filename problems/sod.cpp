@@ -158,7 +158,6 @@ extern const Problem kSodProblem = {
     "sod",      "Sod shock tube along x (1D on a 3D bar), exact Riemann solution",
     declareSod, setupSod,
     finishSod,  nullptr,
-    nullptr,    {},
-    true};  // the checks read owned cells (no gather of the whole fields)
+    nullptr,    {}};
 
 }  // namespace lagremap

@@ -193,7 +193,6 @@ extern const Problem kTaylorProblem = {
     finishTaylor,
     barLength,
     "bar_length",
-    {},
-    true};  // the checks read owned cells (no gather of the whole fields)
+    {}};
 
 }  // namespace lagremap

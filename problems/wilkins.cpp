@@ -18,6 +18,7 @@
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <vector>
 
 #include "../src/exact_two_wave.hpp"
 #include "../src/materials.hpp"
@@ -132,25 +133,42 @@ struct WilkinsProfile {
   bool aluminium(std::size_t c) const { return alpha_al[c] > 1.0 - 1e-6; }
 };
 
+// The mesh is one row of cells: each rank's owned cells, gathered on every
+// rank and put in cell order (a decomposed run's row is cut along x).
 WilkinsProfile profileAlongX(const FinalFields& fields, const std::string& out_dir) {
-  std::ofstream csv;
-  if (!out_dir.empty()) csv.open(out_dir + "/wilkins_profile.csv");
-  csv << "x,rho,u,p,sigma_xx,alpha_al,rho_al\n" << std::setprecision(10);
-  const Index n_cells = Index(fields.rho.extent(0));
+  constexpr int kWidth = 8;  // global id, x, rho, u, p, sigma_xx, alpha_al, rho_al
   const bool mixed = fields.alpha.extent(1) > 1;  // remap mode: aluminium is material 0
-  WilkinsProfile profile;
-  for (Index c = 0; c < n_cells; ++c) {
+  std::vector<double> mine;
+  for (Index c = 0; c < Index(fields.rho.extent(0)); ++c) {
+    if (!fields.counts(c)) continue;
     const double alpha = mixed ? fields.alpha(c, 0) : 1.0;
     const double rho = !mixed        ? fields.rho(c)
                        : alpha > 0.0 ? fields.m_k(c, 0) / (alpha * fields.vol(c))
                                      : NAN;
-    profile.x.push_back(fields.x_c(c, 0));
-    profile.u.push_back(fields.v(c, 0));
-    profile.sigma.push_back(-fields.p(c) + fields.S(c, 0));
-    profile.alpha_al.push_back(alpha);
-    profile.rho_al.push_back(rho);
-    csv << profile.x[c] << ',' << fields.rho(c) << ',' << profile.u[c] << ',' << fields.p(c) << ','
-        << profile.sigma[c] << ',' << alpha << ',' << rho << '\n';
+    mine.insert(mine.end(),
+                {double(fields.globalCell(c)), fields.x_c(c, 0), fields.rho(c), fields.v(c, 0),
+                 fields.p(c), -fields.p(c) + fields.S(c, 0), alpha, rho});
+  }
+  const std::vector<double> records =
+      fields.distributed ? parallel::gatherOnAll(mine) : std::move(mine);
+  std::vector<std::size_t> order(records.size() / kWidth);
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return records[kWidth * a] < records[kWidth * b];
+  });
+  std::ofstream csv;
+  if (!out_dir.empty()) csv.open(out_dir + "/wilkins_profile.csv");
+  csv << "x,rho,u,p,sigma_xx,alpha_al,rho_al\n" << std::setprecision(10);
+  WilkinsProfile profile;
+  for (std::size_t i : order) {
+    const double* r = &records[kWidth * i];
+    profile.x.push_back(r[1]);
+    profile.u.push_back(r[3]);
+    profile.sigma.push_back(r[5]);
+    profile.alpha_al.push_back(r[6]);
+    profile.rho_al.push_back(r[7]);
+    csv << r[1] << ',' << r[2] << ',' << r[3] << ',' << r[4] << ',' << r[5] << ',' << r[6] << ','
+        << r[7] << '\n';
   }
   return profile;
 }
@@ -235,7 +253,9 @@ std::vector<Check> finishWilkins(const Config& config, const FinalFields& fields
 }  // namespace
 
 extern const Problem kWilkinsProblem = {
-    "wilkins", "1D aluminium flyer-plate impact (Mie-Gruneisen, hypo-elastic plastic)",
-    declareWilkins, setupWilkins, finishWilkins};
+    "wilkins",      "1D aluminium flyer-plate impact (Mie-Gruneisen, hypo-elastic plastic)",
+    declareWilkins, setupWilkins,
+    finishWilkins,  nullptr,
+    nullptr,        {}};
 
 }  // namespace lagremap

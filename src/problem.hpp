@@ -87,11 +87,12 @@ struct ProblemSetup {
 };
 
 // Host copies of the fields at the end of a run, for problem checks and CSVs:
-// the whole block's cells in global order, on every rank; or, on a
-// decomposed run whose problem's checks read owned cells
-// (Problem::checks_read_owned_cells), this rank's held cells (`distributed`):
-// `owned` marks the ones it owns, `cell_global` gives their global ids, and
-// `mesh` is the rank's own (local node ids).
+// on one rank the block's cells in global order; on a decomposed run this
+// rank's held cells (`distributed`): `owned` marks the ones it owns,
+// `cell_global` gives their global ids, and `mesh` is the rank's own (local
+// node ids). Every problem's `finish` reads owned cells and combines over the
+// ranks: no rank holds a field of the whole block (tests may ask for the
+// whole block's on every rank, RunOptions::gather_final_fields).
 struct FinalFields {
   double time = 0.0;
   int nx = 0, ny = 0, nz = 0;
@@ -127,10 +128,6 @@ struct Problem {
   const char* probe_name = nullptr;
   // Snapshot times when the command line gives none (PROBLEMS.md), those up to t_end.
   std::vector<double> default_output_times = {};
-  // `finish` works on each rank's owned cells (FinalFields::distributed) and
-  // combines over the ranks (collective); otherwise a decomposed run gathers
-  // the whole block's fields onto every rank for it.
-  bool checks_read_owned_cells = false;
 };
 
 const std::vector<Problem>& problemRegistry();

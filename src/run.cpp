@@ -74,12 +74,10 @@ RankCosts costsOverRanks(const Simulation& simulation, long steps_run) {
 namespace {
 
 // The final (or last good) fields for the problem's checks: on a decomposed
-// run the whole block's on every rank, unless the problem's checks read
-// owned cells (and the caller does not ask for them): then this rank's.
+// run this rank's, or the whole block's on every rank when the caller asks.
 FinalFields finalFields(const Simulation& simulation) {
   const bool decomposed = parallel::size() > 1;
-  const bool gather = decomposed && (!simulation.problem().checks_read_owned_cells ||
-                                     simulation.options().gather_final_fields);
+  const bool gather = decomposed && simulation.options().gather_final_fields;
   const Mesh& mesh = simulation.mesh();
   FinalFields fields = copyFields(mesh, gather, simulation.state(), simulation.time());
   if (decomposed && !gather) {

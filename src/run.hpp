@@ -25,7 +25,7 @@ struct RunOptions {
   long checkpoint_every = 0;         // checkpoint.h5 in the output directory every N steps
   std::string restart_file;          // continue the run of this checkpoint
   // A decomposed run's RunResult::fields: the whole block's on every rank
-  // even when the problem's checks need only the owned cells (tests compare them).
+  // (tests compare them with one rank's), not each rank's own.
   bool gather_final_fields = false;
 };
 

@@ -408,8 +408,8 @@ std::vector<std::string> sortedLines(const std::string& path) {
   return lines;
 }
 
-// Problems whose checks read each rank's owned cells, never the whole
-// block's fields (Problem::checks_read_owned_cells): the same check values as
+// Every problem's checks read each rank's owned cells, never the whole
+// block's fields: the same check values as
 // on one rank, to the bit (exact sums, maxima, symmetry pairs sent to their
 // owners, the cells along a row or a ray gathered from their owners), the
 // same interface measures (two materials), and the same CSVs (rows of a
@@ -437,12 +437,14 @@ TEST(Checks, FromOwnedCellsAreTheSingleRankChecks) {
        {"stopping_inner_radius", "stopping_outer_radius", "final_inward_speed"}},
       {{"shell", "lagrange", {"t_end=2e-6"}, 0.25}, {"shell_mesh_z0.csv"}, {}},
       // the initial moments from each rank's part; rays along the axis
-      {{"ball", "remap", {"t_end=2e-7"}, 0.25}, {}, {}, {"ball_advance_fraction"}}};
+      {{"ball", "remap", {"t_end=2e-7"}, 0.25}, {}, {}, {"ball_advance_fraction"}},
+      // the row of cells gathered in cell order
+      {{"wilkins", "lagrange", {"t_end=1e-6"}, 1.0}, {"wilkins_profile.csv"}, {}},
+      {{"wilkins", "remap", {"t_end=1e-6"}, 1.0}, {"wilkins_profile.csv"}, {}}};
   for (const OwnedCase& c : owned_cases) {
     const std::string dir = sharedScratch(std::string("owned_checks_") + c.run.problem);
     RunOptions options =
         testing::problemOptions(c.run.problem, c.run.assignments, c.run.scale, c.run.mode);
-    ASSERT_TRUE(findProblem(c.run.problem).checks_read_owned_cells) << c.run.problem;
     options.gather_final_fields = false;
     options.write_files = true;
     options.output_dir = dir + "/ranks";
