@@ -11,6 +11,13 @@ namespace lagremap {
 // its resident set (getrusage), what the machine had to give it, MPI's and
 // Kokkos's own buffers included.
 long peakResidentBytes();
+// Resident pages of this process that others may map too [bytes]: mapped
+// files (the code and data of its shared libraries) and shared memory (MPI's
+// segments between the ranks of a machine); 0 where /proc does not say.
+// Every rank of a node counts them in its resident set, the node holds them
+// once; peakResidentBytes() less this, taken at the end of a run, is the
+// rank's own peak (docs/performance.md §6.1).
+long sharedResidentBytes();
 
 // Wall time of the set-up phases on one rank [s].
 struct SetupSeconds {
@@ -24,6 +31,7 @@ struct SetupSeconds {
 // A run's costs over the ranks (collected collectively at its end).
 struct RankCosts {
   parallel::Spread peak_bytes;        // whole run
+  parallel::Spread peak_own_bytes;    // whole run, less the shared pages at its end
   parallel::Spread setup_peak_bytes;  // at the end of set-up
   parallel::Spread owned_cells;       // cells each rank updates
   parallel::Spread peak_bytes_per_owned_cell;

@@ -49,6 +49,7 @@ RankCosts costsOverRanks(const Simulation& simulation, long steps_run) {
   const double owned_cells = double(parallel::size() > 1 ? mesh.n_owned_cells : mesh.n_cells);
   const double peak = double(peakResidentBytes());
   costs.peak_bytes = parallel::spread(peak);
+  costs.peak_own_bytes = parallel::spread(std::max(0.0, peak - double(sharedResidentBytes())));
   costs.setup_peak_bytes = parallel::spread(double(simulation.setupPeakBytes()));
   costs.owned_cells = parallel::spread(owned_cells);
   costs.peak_bytes_per_owned_cell = parallel::spread(owned_cells > 0 ? peak / owned_cells : 0.0);

@@ -67,12 +67,15 @@ void writeCosts(JsonWriter& json, const RankCosts& costs) {
   };
   json.beginObject("memory");
   spread("peak_bytes", costs.peak_bytes);
+  spread("peak_own_bytes", costs.peak_own_bytes);
   spread("setup_peak_bytes", costs.setup_peak_bytes);
   spread("owned_cells", costs.owned_cells);
   spread("peak_bytes_per_owned_cell", costs.peak_bytes_per_owned_cell);
   json.value("note",
              "per rank: peak resident set of the process (getrusage), of the whole run and at the "
-             "end of set-up; min, mean and max over the ranks")
+             "end of set-up; peak_own_bytes: the whole run's less the pages of shared libraries "
+             "and shared memory resident at its end, which the ranks of a machine share; min, "
+             "mean and max over the ranks")
       .endObject();
   json.beginObject("halo")
       .value("bytes_per_step", costs.halo_bytes_per_step)

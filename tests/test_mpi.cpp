@@ -341,6 +341,10 @@ TEST(Costs, HaloTrafficIsTheLeanListsAndMemoryIsReportedPerRank) {
 
   EXPECT_GT(costs.setup_peak_bytes.min, 0.0);
   EXPECT_GE(costs.peak_bytes.max, costs.setup_peak_bytes.max);
+  // (every process maps libraries: its own peak is less than its resident one)
+  EXPECT_GT(costs.peak_own_bytes.min, 0.0);
+  EXPECT_LT(costs.peak_own_bytes.max, costs.peak_bytes.max);
+  EXPECT_LT(costs.peak_own_bytes.min, costs.peak_bytes.min);
   EXPECT_LE(costs.peak_bytes.min, costs.peak_bytes.mean);
   EXPECT_LE(costs.peak_bytes.mean, costs.peak_bytes.max);
   EXPECT_EQ(costs.owned_cells.mean * parallel::size(), double(simulation.mesh().n_global_cells));
