@@ -69,7 +69,7 @@ void writeSnapshot(io::SnapshotSeries& series, const FinalFields& fields, const 
     node_rows.push_back(mesh.node_global(n));
   }
   // A field of `components` values per owned cell, value(c, d) of local cell c.
-  auto field = [&](std::string name, int components, auto value) {
+  auto ownedCellField = [&](std::string name, int components, auto value) {
     return io::CellField{std::move(name), nullptr, components,
                          [&cells, components, value](double* out) {
                            for (std::size_t i = 0; i < cells.size(); ++i)
@@ -78,30 +78,30 @@ void writeSnapshot(io::SnapshotSeries& series, const FinalFields& fields, const 
                          }};
   };
   std::vector<io::CellField> cell_fields = {
-      field("density", 1, [&](Index c, int) { return fields.rho(c); }),
-      field("pressure", 1, [&](Index c, int) { return fields.p(c); }),
-      field("internal_energy", 1, [&](Index c, int) { return fields.e(c); }),
-      field("volume", 1, [&](Index c, int) { return fields.vol(c); }),
-      field("velocity", 3, [&](Index c, int d) { return fields.v(c, d); }),
-      field("deviatoric_stress", 6, [&](Index c, int k) { return fields.S(c, k); })};
+      ownedCellField("density", 1, [&](Index c, int) { return fields.rho(c); }),
+      ownedCellField("pressure", 1, [&](Index c, int) { return fields.p(c); }),
+      ownedCellField("internal_energy", 1, [&](Index c, int) { return fields.e(c); }),
+      ownedCellField("volume", 1, [&](Index c, int) { return fields.vol(c); }),
+      ownedCellField("velocity", 3, [&](Index c, int d) { return fields.v(c, d); }),
+      ownedCellField("deviatoric_stress", 6, [&](Index c, int k) { return fields.S(c, k); })};
   // Multi-material problems: each material's volume fraction, density
   // m^k / (alpha^k v), specific internal energy and pressure (0 where absent).
   const int n_materials = int(fields.alpha.extent(1));
   for (int k = 0; n_materials > 1 && k < n_materials; ++k) {
     auto present = [&fields, k](Index c) { return fields.alpha(c, k) > 0.0; };
     const std::string suffix = "_" + std::to_string(k);
-    cell_fields.push_back(field("volume_fraction" + suffix, 1,
-                                [&fields, k](Index c, int) { return fields.alpha(c, k); }));
+    cell_fields.push_back(ownedCellField(
+        "volume_fraction" + suffix, 1, [&fields, k](Index c, int) { return fields.alpha(c, k); }));
     cell_fields.push_back(
-        field("material_density" + suffix, 1, [&fields, k, present](Index c, int) {
+        ownedCellField("material_density" + suffix, 1, [&fields, k, present](Index c, int) {
           return present(c) ? fields.m_k(c, k) / (fields.alpha(c, k) * fields.vol(c)) : 0.0;
         }));
-    cell_fields.push_back(
-        field("material_internal_energy" + suffix, 1,
-              [&fields, k, present](Index c, int) { return present(c) ? fields.e_k(c, k) : 0.0; }));
-    cell_fields.push_back(
-        field("material_pressure" + suffix, 1,
-              [&fields, k, present](Index c, int) { return present(c) ? fields.p_k(c, k) : 0.0; }));
+    cell_fields.push_back(ownedCellField(
+        "material_internal_energy" + suffix, 1,
+        [&fields, k, present](Index c, int) { return present(c) ? fields.e_k(c, k) : 0.0; }));
+    cell_fields.push_back(ownedCellField(
+        "material_pressure" + suffix, 1,
+        [&fields, k, present](Index c, int) { return present(c) ? fields.p_k(c, k) : 0.0; }));
   }
   io::SnapshotMesh snapshot_mesh{std::int64_t(nodes.size()), nullptr,
                                  std::int64_t(cells.size()), nullptr,
