@@ -476,21 +476,18 @@ void writeCellOutlines(const std::string& path, const FinalFields& fields) {
 }
 
 void writeRowsInCellOrder(const std::string& keyed_lines, bool distributed, std::ostream& out) {
-  std::ostringstream gathered;
-  if (distributed) {
-    parallel::writeOnRoot(keyed_lines, &gathered);
-    if (!parallel::isRoot()) return;
-  } else {
-    gathered << keyed_lines;
-  }
-  std::vector<std::pair<long, std::string>> lines;
-  std::istringstream in(gathered.str());
+  std::vector<parallel::KeyedLine> lines;
+  std::istringstream in(keyed_lines);
   for (std::string line; std::getline(in, line);) {
     const std::size_t space = line.find(' ');
-    lines.emplace_back(std::stol(line.substr(0, space)), line.substr(space + 1));
+    lines.push_back({std::stol(line.substr(0, space)), line.substr(space + 1)});
   }
-  std::sort(lines.begin(), lines.end());
-  for (const auto& line : lines) out << line.second << '\n';
+  std::sort(lines.begin(), lines.end(), [](const auto& a, const auto& b) { return a.key < b.key; });
+  if (distributed) {
+    parallel::writeMergedOnRoot(lines, &out);
+  } else {
+    for (const auto& line : lines) out << line.text << '\n';
+  }
 }
 
 ProblemSetup setupBlock(const Config& config, const Vec3& lo, const Vec3& hi,

@@ -2,6 +2,11 @@
 
 #include <mpi.h>
 
+#include <deque>
+#include <functional>
+#include <queue>
+#include <utility>
+
 namespace lagremap::parallel {
 namespace {
 int serial_scopes = 0;  // SerialScope objects alive
@@ -186,6 +191,94 @@ void writeOnRoot(const std::string& text, std::ostream* out) {
     received.resize(std::size_t(length));
     MPI_Recv(received.data(), int(length), MPI_CHAR, r, 2, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
     if (out) *out << received;
+  }
+}
+
+namespace {
+
+// (tags of their own: the halo uses 0, writeOnRoot 1 and 2)
+constexpr int kPieceRequestTag = 3, kPieceLengthTag = 4, kPieceTag = 5;
+
+// A piece of lines: "key text\n" each, from lines[first] on, of about
+// kMergePieceBytes (one line at least); `first` moves past them.
+std::string nextPiece(const std::vector<KeyedLine>& lines, std::size_t& first) {
+  std::string piece;
+  while (first < lines.size() && (piece.empty() || piece.size() < kMergePieceBytes)) {
+    piece += std::to_string(lines[first].key) + ' ' + lines[first].text + '\n';
+    ++first;
+  }
+  return piece;
+}
+
+// A piece's lines back as KeyedLines, appended to `to`.
+void readPiece(const std::string& piece, std::deque<KeyedLine>& to) {
+  std::size_t at = 0;
+  while (at < piece.size()) {
+    const std::size_t space = piece.find(' ', at), end = piece.find('\n', space);
+    to.push_back(
+        {std::stol(piece.substr(at, space - at)), piece.substr(space + 1, end - space - 1)});
+    at = end + 1;
+  }
+}
+
+}  // namespace
+
+void writeMergedOnRoot(const std::vector<KeyedLine>& lines, std::ostream* out) {
+  if (size() == 1) {
+    for (const KeyedLine& line : lines)
+      if (out) *out << line.text << '\n';
+    return;
+  }
+  std::size_t next = 0;
+  if (!isRoot()) {  // serve rank 0's requests until the lines run out
+    for (bool done = false; !done;) {
+      int request = 0;
+      MPI_Recv(&request, 1, MPI_INT, 0, kPieceRequestTag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+      const std::string piece = nextPiece(lines, next);
+      const long length = long(piece.size());
+      MPI_Send(&length, 1, MPI_LONG, 0, kPieceLengthTag, MPI_COMM_WORLD);
+      if (length > 0) {
+        MPI_Send(piece.data(), int(length), MPI_CHAR, 0, kPieceTag, MPI_COMM_WORLD);
+      }
+      done = length == 0;
+    }
+    return;
+  }
+  // Rank 0: each rank's pending lines; a rank with none left is asked for
+  // its next piece, and is done when that piece is empty.
+  const int n_ranks = size();
+  std::vector<std::deque<KeyedLine>> pending(n_ranks);
+  std::vector<bool> done(n_ranks, false);
+  const auto refill = [&](int rank) {
+    if (rank == 0) {
+      readPiece(nextPiece(lines, next), pending[0]);
+    } else {
+      const int request = 1;
+      long length = 0;
+      MPI_Send(&request, 1, MPI_INT, rank, kPieceRequestTag, MPI_COMM_WORLD);
+      MPI_Recv(&length, 1, MPI_LONG, rank, kPieceLengthTag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+      std::string piece(std::size_t(length), '\0');
+      if (length > 0) {
+        MPI_Recv(piece.data(), int(length), MPI_CHAR, rank, kPieceTag, MPI_COMM_WORLD,
+                 MPI_STATUS_IGNORE);
+      }
+      readPiece(piece, pending[rank]);
+    }
+    done[rank] = pending[rank].empty();
+  };
+  using Head = std::pair<long, int>;  // a rank's next key, and the rank
+  std::priority_queue<Head, std::vector<Head>, std::greater<Head>> heads;
+  for (int rank = 0; rank < n_ranks; ++rank) {
+    refill(rank);
+    if (!done[rank]) heads.push({pending[rank].front().key, rank});
+  }
+  while (!heads.empty()) {
+    const int rank = heads.top().second;
+    heads.pop();
+    if (out) *out << pending[rank].front().text << '\n';
+    pending[rank].pop_front();
+    if (pending[rank].empty()) refill(rank);
+    if (!done[rank]) heads.push({pending[rank].front().key, rank});
   }
 }
 

@@ -57,6 +57,19 @@ std::vector<double> gatherOnAll(const std::vector<double>& values);
 // at a time (rank 0 never holds more than one rank's text); `out` is only
 // read on rank 0. Collective.
 void writeOnRoot(const std::string& text, std::ostream* out);
+// A line of text with its place in a file (a global cell id).
+struct KeyedLine {
+  long key = 0;
+  std::string text;  // without its newline
+};
+// Writes every rank's lines to `out` on rank 0, one line each, in the order
+// of their keys over all ranks; each rank's `lines` must be in key order.
+// Rank 0 merges them as it writes, taking each rank's lines in pieces of
+// about kMergePieceBytes when it needs them: it never holds more than a piece
+// per rank (a layer of cells written in cell order from any rank count).
+// Collective; `out` is only read on rank 0.
+void writeMergedOnRoot(const std::vector<KeyedLine>& lines, std::ostream* out);
+constexpr std::size_t kMergePieceBytes = 16384;
 // How many of the run's ranks share this machine's memory (1 on one rank).
 int ranksOnThisMachine();
 

@@ -195,10 +195,11 @@ struct MaterialRegions {
 // mass-weighted mean of the samples' velocities (momentum conserved).
 void fillMaterialRegions(ProblemSetup& setup, const MaterialRegions& regions,
                          int samples_per_edge = 8);
-// CSV rows of some cells (a row or a layer of the block: few), each line
-// "global_id row" in `keyed_lines`: written to `out` on rank 0 in cell
-// order, without the ids. With distributed fields every rank sends its lines
-// to rank 0 (collective); `out` is only written on rank 0.
+// CSV rows of some cells (a row or a layer of the block), each line
+// "global_id row" in `keyed_lines`: written to `out` in cell order, without
+// the ids. With distributed fields rank 0 merges the ranks' lines as it
+// writes them, a piece of each rank's at a time (parallel::writeMergedOnRoot;
+// collective), and `out` is only written on rank 0.
 void writeRowsInCellOrder(const std::string& keyed_lines, bool distributed, std::ostream& out);
 // The in-plane corners (VTK nodes 0-3) and density of every cell, in cell
 // order, to the CSV at `path` ("x0,y0,x1,y1,x2,y2,x3,y3,density"; the shape

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
+#include <sstream>
 
 #include "src/decomposition.hpp"
 #include "src/floating_point.hpp"
@@ -410,6 +411,33 @@ std::vector<std::string> sortedLines(const std::string& path) {
   for (std::string line; std::getline(in, line);) lines.push_back(line);
   std::sort(lines.begin(), lines.end());
   return lines;
+}
+
+// Rank 0 writes every rank's lines in key order, merging them in pieces:
+// keys dealt round the ranks (the last of 3 or more holds none), each rank's
+// lines several pieces long, so that the merge asks every rank many times.
+TEST(Parallel, LinesAreMergedInKeyOrderOnRoot) {
+  const int ranks = parallel::size(), rank = parallel::rank();
+  const bool empty_rank = ranks > 2 && rank == ranks - 1;
+  const auto text = [](long key) { return "cell " + std::to_string(key) + std::string(37, '.'); };
+  std::vector<parallel::KeyedLine> mine;
+  std::string expected;
+  for (long key = 0; key < 8000; ++key) {
+    const int holder = int(key % ranks);
+    if (holder == ranks - 1 && ranks > 2) continue;
+    expected += text(key) + '\n';
+    if (holder == rank && !empty_rank) mine.push_back({key, text(key)});
+  }
+  if (!empty_rank) {
+    EXPECT_GT(mine.size() * 45, 3 * parallel::kMergePieceBytes) << "several pieces";
+  }
+  std::ostringstream out;
+  parallel::writeMergedOnRoot(mine, &out);
+  if (parallel::isRoot()) {
+    EXPECT_EQ(out.str(), expected);
+  } else {
+    EXPECT_TRUE(out.str().empty());
+  }
 }
 
 // Every problem's checks read each rank's owned cells, never the whole
