@@ -239,7 +239,6 @@ extern const Problem kBeamProblem = {
     setupBeam,
     finishBeam,
     tipDisplacement,
-    "tip_displacement_y",
-    {}};
+    "tip_displacement_y"};
 
 }  // namespace lagremap

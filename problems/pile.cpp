@@ -127,7 +127,6 @@ extern const Problem kPileProblem = {
     setupPile,
     finishPile,
     wallStress,
-    "wall_sigma_xx",
-    {}};
+    "wall_sigma_xx"};
 
 }  // namespace lagremap

@@ -292,15 +292,9 @@ void fillMaterialRegions(ProblemSetup& setup, const MaterialRegions& regions,
   setup.sample_seconds += timer.seconds();
 }
 
-namespace {
-
-// Records of `width` numbers, each rank's (collective when the fields are
-// distributed): every rank's records on every rank; otherwise `mine`.
-std::vector<double> recordsOfAllRanks(const FinalFields& fields, const std::vector<double>& mine) {
+std::vector<double> recordsOfAllRanks(const FinalFields& fields, std::vector<double> mine) {
   return fields.distributed ? parallel::gatherOnAll(mine) : mine;
 }
-
-}  // namespace
 
 double materialFrontX(const FinalFields& fields, int material, double y_line) {
   const Index n_cells = Index(fields.x_c.extent(0));

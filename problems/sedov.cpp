@@ -254,9 +254,7 @@ std::vector<Check> finishSedov(const Config& config, const FinalFields& fields,
 }  // namespace
 
 extern const Problem kSedovProblem = {
-    "sedov",      "3D point blast in an octant (symmetry planes), self-similar shock radius",
-    declareSedov, setupSedov,
-    finishSedov,  nullptr,
-    nullptr,      {}};
+    "sedov", "3D point blast in an octant (symmetry planes), self-similar shock radius",
+    declareSedov, setupSedov, finishSedov};
 
 }  // namespace lagremap

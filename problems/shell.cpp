@@ -382,7 +382,6 @@ extern const Problem kShellProblem = {
     setupShell,
     finishShell,
     innerRadius,
-    "inner_radius",
-    {}};
+    "inner_radius"};
 
 }  // namespace lagremap

@@ -155,9 +155,7 @@ std::vector<Check> finishSod(const Config& config, const FinalFields& fields,
 }  // namespace
 
 extern const Problem kSodProblem = {
-    "sod",      "Sod shock tube along x (1D on a 3D bar), exact Riemann solution",
-    declareSod, setupSod,
-    finishSod,  nullptr,
-    nullptr,    {}};
+    "sod", "Sod shock tube along x (1D on a 3D bar), exact Riemann solution", declareSod, setupSod,
+    finishSod};
 
 }  // namespace lagremap

@@ -192,7 +192,6 @@ extern const Problem kTaylorProblem = {
     setupTaylor,
     finishTaylor,
     barLength,
-    "bar_length",
-    {}};
+    "bar_length"};
 
 }  // namespace lagremap

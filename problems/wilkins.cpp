@@ -149,8 +149,7 @@ WilkinsProfile profileAlongX(const FinalFields& fields, const std::string& out_d
                 {double(fields.globalCell(c)), fields.x_c(c, 0), fields.rho(c), fields.v(c, 0),
                  fields.p(c), -fields.p(c) + fields.S(c, 0), alpha, rho});
   }
-  const std::vector<double> records =
-      fields.distributed ? parallel::gatherOnAll(mine) : std::move(mine);
+  const std::vector<double> records = recordsOfAllRanks(fields, std::move(mine));
   std::vector<std::size_t> order(records.size() / kWidth);
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
@@ -253,9 +252,7 @@ std::vector<Check> finishWilkins(const Config& config, const FinalFields& fields
 }  // namespace
 
 extern const Problem kWilkinsProblem = {
-    "wilkins",      "1D aluminium flyer-plate impact (Mie-Gruneisen, hypo-elastic plastic)",
-    declareWilkins, setupWilkins,
-    finishWilkins,  nullptr,
-    nullptr,        {}};
+    "wilkins", "1D aluminium flyer-plate impact (Mie-Gruneisen, hypo-elastic plastic)",
+    declareWilkins, setupWilkins, finishWilkins};
 
 }  // namespace lagremap

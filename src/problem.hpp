@@ -201,6 +201,11 @@ void fillMaterialRegions(ProblemSetup& setup, const MaterialRegions& regions,
 // writes them, a piece of each rank's at a time (parallel::writeMergedOnRoot;
 // collective), and `out` is only written on rank 0.
 void writeRowsInCellOrder(const std::string& keyed_lines, bool distributed, std::ostream& out);
+// Records (a few numbers each) that every rank made from its owned cells:
+// all ranks' on every rank, in rank order, when the fields are distributed
+// (collective); otherwise `mine`. For the few cells a check reads along a
+// row or a ray, never for a field.
+std::vector<double> recordsOfAllRanks(const FinalFields& fields, std::vector<double> mine);
 // The in-plane corners (VTK nodes 0-3) and density of every cell, in cell
 // order, to the CSV at `path` ("x0,y0,x1,y1,x2,y2,x3,y3,density"; the shape
 // of a slab's deformed mesh). Collective with distributed fields; `path`

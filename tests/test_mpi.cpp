@@ -441,11 +441,11 @@ TEST(Parallel, LinesAreMergedInKeyOrderOnRoot) {
 }
 
 // Every problem's checks read each rank's owned cells, never the whole
-// block's fields: the same check values as
-// on one rank, to the bit (exact sums, maxima, symmetry pairs sent to their
-// owners, the cells along a row or a ray gathered from their owners), the
-// same interface measures (two materials), and the same CSVs (rows of a
-// layer in cell order; radial.csv's rank by rank). A check read from the
+// block's fields: the same check values as on one rank, to the bit (exact
+// sums, maxima, symmetry pairs sent to their owners, the cells along a row
+// or a ray gathered from their owners), the same interface measures (two
+// materials), and the same CSVs (rows of a layer in cell order; radial.csv's
+// rank by rank). A check read from the
 // problem's probe (a sum over the ranks after every step, like the totals)
 // may differ in its last bits: to 1e-12.
 TEST(Checks, FromOwnedCellsAreTheSingleRankChecks) {
@@ -474,7 +474,8 @@ TEST(Checks, FromOwnedCellsAreTheSingleRankChecks) {
       {{"wilkins", "lagrange", {"t_end=1e-6"}, 1.0}, {"wilkins_profile.csv"}, {}},
       {{"wilkins", "remap", {"t_end=1e-6"}, 1.0}, {"wilkins_profile.csv"}, {}}};
   for (const OwnedCase& c : owned_cases) {
-    const std::string dir = sharedScratch(std::string("owned_checks_") + c.run.problem);
+    const std::string dir =
+        sharedScratch(std::string("owned_checks_") + c.run.problem + "_" + c.run.mode);
     RunOptions options =
         testing::problemOptions(c.run.problem, c.run.assignments, c.run.scale, c.run.mode);
     options.gather_final_fields = false;
