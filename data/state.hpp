@@ -70,6 +70,9 @@ struct State {
   Vec3View x_n0, v_c0;
   RealView E_c0;
   MatRealView e_ck0, alpha_ck0, w_ck0;
+  // Material pressures of the step start: a mixed cell's pressure relaxation
+  // is computed from them in both stages (docs/method.md §4.3).
+  MatRealView p_ck0;
   RealView vol_c0;
   MatSym6View S_ck0, B_ck0;
 

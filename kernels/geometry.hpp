@@ -96,7 +96,7 @@ KOKKOS_INLINE_FUNCTION void relaxationVolumes(const State& s, Index c,
         s.alpha_ck0(c, m) > 0.0 && s.alpha_ck0(c, m) >= s.alpha_trace && s.w_ck0(c, m) > 0.0;
     if (!relaxes[m]) continue;
     weight_sum += s.w_ck0(c, m);
-    sigma[m] = -s.p_ck(c, m);
+    sigma[m] = -s.p_ck0(c, m);
     Vec3 n;
     if (isSolidBody(s, c, m, n)) sigma[m] += dot(n, loadSym(s.S_ck0, c, m) * n);
   }

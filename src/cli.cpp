@@ -67,6 +67,7 @@ void printReport(const RunOptions& options, const RunResult& result) {
     if (!check.counts()) std::printf("  (%s)", check.not_applicable.c_str());
     std::printf("\n");
   }
+  if (result.mixed_cells) std::printf("%s\n", mixedCellsLine(*result.mixed_cells).c_str());
   std::printf("FOM: %.4g cell-steps/s (%s)\n", result.cell_steps_per_second,
               executionSpaceText().c_str());
   const RankCosts& costs = result.costs;

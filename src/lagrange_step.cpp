@@ -109,6 +109,7 @@ void LagrangeStep::saveStartOfStep() {
   if (state_.n_materials > 1) {  // mixed cells share volume changes by compressibility
     Kokkos::deep_copy(state_.alpha_ck0, state_.alpha_ck);
     Kokkos::deep_copy(state_.w_ck0, state_.w_ck);
+    Kokkos::deep_copy(state_.p_ck0, state_.p_ck);
     Kokkos::deep_copy(state_.vol_c0, state_.vol_c);
   }
   if (state_.has_solids) {  // fluids-only runs have no deviator or B to carry

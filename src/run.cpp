@@ -176,6 +176,9 @@ RunResult resultOf(const Simulation& simulation) {
   for (int k = 0; n_materials > 1 && k < n_materials; ++k) {
     result.interfaces.push_back(measureInterface(simulation.mesh(), fields, k));
   }
+  if (n_materials > 1 && simulation.options().mode == "remap") {
+    result.mixed_cells = measureMixedCells(fields, simulation.materials());
+  }
   return result;
 }
 
@@ -210,8 +213,11 @@ RunResult runProblem(const RunOptions& options) {
   const bool writer = options.write_files && parallel::isRoot();  // rank 0 writes the files
   const std::string& dir = options.output_dir;
   if (problem.probe && writer) writeProbe(dir + "/probe.csv", problem, result.fields);
-  if (!result.failed)
+  if (!result.failed) {
     result.checks = problem.finish(options.config, result.fields, writer ? dir : "");
+    if (result.mixed_cells && result.mixed_cells->hasCondensed())
+      result.checks.push_back(mixedCellsCheck(*result.mixed_cells));
+  }
   if (writer) writeSummary(dir + "/summary.json", simulation, result);
   return result;
 }

@@ -3,10 +3,12 @@
 // Everything main() does, callable from tests.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "input/config.hpp"
+#include "mixed_cells.hpp"
 #include "problem.hpp"
 #include "resources.hpp"
 #include "setup.hpp"
@@ -52,6 +54,9 @@ struct RunResult {
   double max_transverse_velocity = 0.0;
   FinalFields fields;                        // host copies of the final (or last good) state
   std::vector<InterfaceMeasure> interfaces;  // per material (multi-material runs)
+  // Remap runs with several materials: the state of the mixed cells (the
+  // mixed_cells check where a material is condensed).
+  std::optional<MixedCellReport> mixed_cells;
   RankCosts costs;                           // memory, set-up time and halo traffic over the ranks
   bool checksPass() const;
 };

@@ -60,6 +60,7 @@ void allocateMaterialState(State& s, Index n_cells, int n_materials, bool has_so
   s.p_ck = scalars("p_ck");
   s.w_ck = scalars("w_ck");
   s.w_ck0 = scalars("w_ck0");
+  s.p_ck0 = scalars("p_ck0");
   s.alpha_ck0 = scalars("alpha_ck0");
   s.vol_c0 = RealView("lagremap::state::vol_c0", n_cells);
   s.S_ck = tensors("S_ck");

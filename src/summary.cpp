@@ -126,6 +126,36 @@ void writeInterfaces(JsonWriter& json, const Simulation& simulation, const RunRe
   json.endObject();
 }
 
+// Remap runs: each material's mixed cells (src/mixed_cells.hpp).
+void writeMixedCells(JsonWriter& json, const RunResult& result) {
+  if (!result.mixed_cells) return;
+  const MixedCellReport& report = *result.mixed_cells;
+  json.beginObject("mixed_cells");
+  for (const MaterialMixedCells& m : report.materials) {
+    json.beginObject("material_" + std::to_string(m.material))
+        .value("condensed", m.condensed)
+        .value("mixed_cells", m.mixed_cells)
+        .value("pure_cells", m.pure_cells)
+        .value("stretched", m.stretched)
+        .value("pressure_outliers", m.pressure_outliers)
+        .value("material_pressure_min", m.p_mixed_lo)
+        .value("material_pressure_max", m.p_mixed_hi)
+        .value("pure_pressure_min", m.p_pure_lo)
+        .value("pure_pressure_max", m.p_pure_hi)
+        .value("pure_density_median", m.rho_pure_median)
+        .endObject();
+  }
+  json.value("impure_cells", report.impure_cells)
+      .value("mixture_pressure_outliers", report.mixture_pressure_outliers)
+      .value("note",
+             "mixed: 0.01 <= alpha <= 0.99, pure: alpha > 0.999; stretched: material density "
+             "below 0.98 of its pure cells' median; pressure outlier: material pressure outside "
+             "[min(p_pure_min, 0) - M, p_pure_max + M], M = max |p| of its pure cells; mixture: "
+             "cells pure in no material with p outside the pure cells' mixture range widened "
+             "by M/2 (docs/method.md 4.9)")
+      .endObject();
+}
+
 void writeChecksAndKeys(JsonWriter& json, const Config& config, const RunResult& result) {
   json.beginObject("checks");
   for (const auto& check : result.checks) {
@@ -156,6 +186,7 @@ void writeSummary(const std::string& path, const Simulation& simulation, const R
   writeConservation(json, simulation, result);
   writeCosts(json, result.costs);
   writeInterfaces(json, simulation, result);
+  writeMixedCells(json, result);
   writeChecksAndKeys(json, simulation.options().config, result);
   json.endObject();
 }

@@ -1,0 +1,205 @@
+#include "mixed_cells.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+
+#include "parallel.hpp"
+
+namespace lagremap {
+
+namespace {
+
+// The k-th smallest (0-based) of the positive numbers `values` held by all
+// ranks together: a bisection over the ordered bit patterns of positive
+// doubles, counting over the ranks (64 sums, exact; no rank gathers them).
+double kthOverRanks(const std::vector<double>& values, long k) {
+  auto bits = [](double x) {
+    std::uint64_t u;
+    std::memcpy(&u, &x, sizeof u);
+    return u;
+  };
+  std::uint64_t lo = 0, hi = bits(HUGE_VAL);  // the answer's pattern is in (lo, hi]
+  while (hi - lo > 1) {
+    const std::uint64_t mid = lo + (hi - lo) / 2;
+    double mid_value;
+    std::memcpy(&mid_value, &mid, sizeof mid_value);
+    long at_most = 0;
+    for (double v : values) at_most += v <= mid_value;
+    if (long(parallel::sum(double(at_most))) > k) {
+      hi = mid;
+    } else {
+      lo = mid;
+    }
+  }
+  double value;
+  std::memcpy(&value, &hi, sizeof value);
+  return value;
+}
+
+// Median of positive numbers spread over the ranks (the mean of the two
+// middle ones for an even count); 0 for none.
+double medianOverRanks(std::vector<double> values, bool distributed) {
+  const long n = distributed ? long(parallel::sum(double(values.size()))) : long(values.size());
+  if (n == 0) return 0.0;
+  if (!distributed) {
+    std::sort(values.begin(), values.end());
+    return n % 2 ? values[std::size_t(n / 2)]
+                 : 0.5 * (values[std::size_t(n / 2 - 1)] + values[std::size_t(n / 2)]);
+  }
+  return n % 2 ? kthOverRanks(values, n / 2)
+               : 0.5 * (kthOverRanks(values, n / 2 - 1) + kthOverRanks(values, n / 2));
+}
+
+struct Range {
+  double lo = HUGE_VAL, hi = -HUGE_VAL;
+  void include(double x) {
+    lo = std::min(lo, x);
+    hi = std::max(hi, x);
+  }
+  void overRanks(bool distributed) {
+    if (!distributed) return;
+    lo = parallel::min(lo);
+    hi = parallel::max(hi);
+  }
+  bool empty() const { return !(lo <= hi); }
+  // [min(lo, 0) - margin_scale M, hi + margin_scale M], M = max(|lo|, |hi|)
+  bool outside(double x, double margin_scale) const {
+    const double margin = margin_scale * std::max(std::abs(lo), std::abs(hi));
+    return x < std::min(lo, 0.0) - margin || x > hi + margin;
+  }
+};
+
+long countOverRanks(long count, bool distributed) {
+  return distributed ? long(parallel::sum(double(count))) : count;
+}
+
+}  // namespace
+
+bool MixedCellReport::hasCondensed() const {
+  for (const auto& m : materials)
+    if (m.condensed) return true;
+  return false;
+}
+
+double MixedCellReport::worstFraction(std::string* what) const {
+  double worst = mixtureOutlierFraction();
+  if (what) *what = "mixture pressure outliers among the cells not pure";
+  for (const auto& m : materials) {
+    if (!m.condensed) continue;
+    const std::string name = "material " + std::to_string(m.material);
+    if (m.stretchedFraction() > worst) {
+      worst = m.stretchedFraction();
+      if (what) *what = name + " stretched";
+    }
+    if (m.pressureOutlierFraction() > worst) {
+      worst = m.pressureOutlierFraction();
+      if (what) *what = name + " pressure outliers";
+    }
+  }
+  return worst;
+}
+
+MixedCellReport measureMixedCells(const FinalFields& fields,
+                                  const std::vector<MaterialParams>& materials) {
+  const bool distributed = fields.distributed;
+  const Index n_cells = Index(fields.alpha.extent(0));
+  const int n_materials = int(fields.alpha.extent(1));
+  MixedCellReport report;
+  auto density = [&](Index c, int k) {
+    return fields.m_k(c, k) / (fields.alpha(c, k) * fields.vol(c));
+  };
+  auto pure = [&](Index c) {
+    for (int k = 0; k < n_materials; ++k)
+      if (fields.alpha(c, k) > kPureAlpha) return true;
+    return false;
+  };
+  for (int k = 0; k < n_materials; ++k) {
+    MaterialMixedCells m;
+    m.material = k;
+    m.condensed = materials[std::size_t(k)].eos != EosKind::IdealGas;
+    std::vector<double> pure_density;
+    Range pure_p, mixed_p;
+    for (Index c = 0; c < n_cells; ++c) {
+      if (!fields.counts(c)) continue;
+      const double alpha = fields.alpha(c, k);
+      if (alpha > kPureAlpha) {
+        pure_density.push_back(density(c, k));
+        pure_p.include(fields.p_k(c, k));
+      } else if (alpha >= kMixedAlphaLow && alpha <= 1.0 - kMixedAlphaLow) {
+        mixed_p.include(fields.p_k(c, k));
+        ++m.mixed_cells;
+      }
+    }
+    m.pure_cells = countOverRanks(long(pure_density.size()), distributed);
+    m.mixed_cells = countOverRanks(m.mixed_cells, distributed);
+    m.rho_pure_median = medianOverRanks(pure_density, distributed);
+    pure_p.overRanks(distributed);
+    mixed_p.overRanks(distributed);
+    m.p_pure_lo = pure_p.empty() ? 0.0 : pure_p.lo;
+    m.p_pure_hi = pure_p.empty() ? 0.0 : pure_p.hi;
+    m.p_mixed_lo = mixed_p.empty() ? 0.0 : mixed_p.lo;
+    m.p_mixed_hi = mixed_p.empty() ? 0.0 : mixed_p.hi;
+    // (without pure cells there is nothing to compare a mixed cell with)
+    if (m.pure_cells > 0) {
+      for (Index c = 0; c < n_cells; ++c) {
+        const double alpha = fields.alpha(c, k);
+        if (!fields.counts(c) || !(alpha >= kMixedAlphaLow && alpha <= 1.0 - kMixedAlphaLow))
+          continue;
+        m.stretched += density(c, k) < (1.0 - kStretchFraction) * m.rho_pure_median;
+        m.pressure_outliers += pure_p.outside(fields.p_k(c, k), 1.0);
+      }
+      m.stretched = countOverRanks(m.stretched, distributed);
+      m.pressure_outliers = countOverRanks(m.pressure_outliers, distributed);
+    }
+    report.materials.push_back(m);
+  }
+  Range pure_mixture;
+  for (Index c = 0; c < n_cells; ++c) {
+    if (fields.counts(c) && pure(c)) pure_mixture.include(fields.p(c));
+  }
+  pure_mixture.overRanks(distributed);
+  report.mixture_p_pure_lo = pure_mixture.empty() ? 0.0 : pure_mixture.lo;
+  report.mixture_p_pure_hi = pure_mixture.empty() ? 0.0 : pure_mixture.hi;
+  for (Index c = 0; c < n_cells; ++c) {
+    if (!fields.counts(c) || pure(c)) continue;
+    ++report.impure_cells;
+    if (!pure_mixture.empty()) report.mixture_pressure_outliers += pure_mixture.outside(fields.p(c), 0.5);
+  }
+  report.impure_cells = countOverRanks(report.impure_cells, distributed);
+  report.mixture_pressure_outliers = countOverRanks(report.mixture_pressure_outliers, distributed);
+  return report;
+}
+
+Check mixedCellsCheck(const MixedCellReport& report) {
+  std::string what;
+  const double worst = report.worstFraction(&what);
+  Check check("mixed_cells", worst, 0.0, kMixedCellFractionBound,
+              "largest fraction of mixed cells out of their material's pure state (" + what +
+                  "): each condensed material's stretched (density 2% below its pure cells' "
+                  "median) and pressure outliers, and the mixture pressure outliers of the cells "
+                  "not pure (docs/method.md §4.9)");
+  check.source = "mixed-cell state";
+  return check;
+}
+
+std::string mixedCellsLine(const MixedCellReport& report) {
+  std::string line = "mixed cells:";
+  char text[256];
+  for (const auto& m : report.materials) {
+    if (!m.condensed) continue;
+    std::snprintf(text, sizeof text,
+                  " material %d: %ld of %ld stretched, %ld p outliers, p %.3g .. %.3g GPa (pure "
+                  "%.3g .. %.3g);",
+                  m.material, m.stretched, m.mixed_cells, m.pressure_outliers, m.p_mixed_lo / 1e9,
+                  m.p_mixed_hi / 1e9, m.p_pure_lo / 1e9, m.p_pure_hi / 1e9);
+    line += text;
+  }
+  std::snprintf(text, sizeof text, " mixture p: %ld of %ld not pure outside",
+                report.mixture_pressure_outliers, report.impure_cells);
+  return line + text;
+}
+
+}  // namespace lagremap
