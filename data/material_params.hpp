@@ -3,13 +3,17 @@
 // the device and a table of them lives in a View.
 #pragma once
 
+#include <Kokkos_Core.hpp>
+
 namespace lagremap {
 
 // NeoHookean is the volumetric half of the hyper-elastic model (DESIGN §4): its
 // pressure depends on J = rho0/rho only, so it is an EOS like the others and
 // every caller of evaluateEos (time step, nodal solver impedance) gets a real
 // bulk sound speed for a Neo-Hookean solid without knowing about strength.
-enum class EosKind : int { IdealGas = 0, MieGruneisen = 1, NeoHookean = 2 };
+// StiffenedGas: p = (gamma - 1) rho e - gamma p_inf (a liquid such as water;
+// p_inf = 0 is the ideal gas).
+enum class EosKind : int { IdealGas = 0, MieGruneisen = 1, NeoHookean = 2, StiffenedGas = 3 };
 
 // Deviatoric response (DESIGN §4): None for fluids, HypoElastic = Wilkins
 // Jaumann rate + radial return, NeoHookean = hyper-elastic from B.
@@ -19,7 +23,8 @@ enum class StrengthKind : int { None = 0, HypoElastic = 1, NeoHookean = 2 };
 // keeps working; every other field defaults to "absent".
 struct MaterialParams {
   EosKind eos = EosKind::IdealGas;
-  double gamma = 1.4;  // ideal gas
+  double gamma = 1.4;  // ideal and stiffened gas
+  double p_inf = 0.0;  // stiffened gas: the pressure shift p_inf
   // Mie-Grüneisen; rho0 is also the reference density of the Neo-Hookean J.
   double rho0 = 0.0;
   double a0 = 0.0;      // bulk sound speed at rho0 (Hugoniot intercept)
@@ -32,5 +37,19 @@ struct MaterialParams {
   double young = 0.0;         // E, Neo-Hookean
   double poisson = 0.0;       // nu, Neo-Hookean
 };
+
+// A fluid of the gas family (ideal or stiffened): its internal energy is
+// positive in every valid state, so the remap and the mixed-cell energy split
+// keep it so (docs/method.md §4.5, §5.6-5.7).
+KOKKOS_INLINE_FUNCTION bool isGasFamily(const MaterialParams& material) {
+  return material.eos == EosKind::IdealGas || material.eos == EosKind::StiffenedGas;
+}
+
+// A condensed material: a solid, or a liquid (a stiffened gas with p_inf >
+// 0). Its density in a mixed cell should stay near its pure cells' (the
+// mixed_cells check).
+KOKKOS_INLINE_FUNCTION bool isCondensed(const MaterialParams& material) {
+  return !(isGasFamily(material) && !(material.p_inf > 0.0));
+}
 
 }  // namespace lagremap

@@ -26,6 +26,14 @@ KOKKOS_INLINE_FUNCTION ThermoState idealGas(double gamma, double rho, double e) 
   return {p, gamma * p / rho};
 }
 
+// Stiffened gas: p = (gamma - 1) rho e - gamma p_inf, a^2 = gamma (p + p_inf) / rho
+// (the ideal gas shifted by p_inf: a liquid's stiffness at low cost). Valid
+// where p + p_inf > 0, i.e. e > p_inf / rho.
+KOKKOS_INLINE_FUNCTION ThermoState stiffenedGas(double gamma, double p_inf, double rho, double e) {
+  const double p = (gamma - 1.0) * rho * e - gamma * p_inf;
+  return {p, gamma * (p + p_inf) / rho};
+}
+
 // Mie-Grüneisen with a linear U_s-u_p Hugoniot as reference curve, written in
 // eta = rho/rho0 (DESIGN §4, with the paper's typo in f corrected):
 //   p   = rho0 a0^2 f(eta) + rho0 Gamma0 e,
@@ -96,6 +104,8 @@ KOKKOS_INLINE_FUNCTION ThermoState evaluateEos(const MaterialParams& mat, double
       return mieGruneisen(mat.rho0, mat.a0, mat.Gamma0, mat.s, rho, e);
     case EosKind::NeoHookean:
       return neoHookeanVolumetric(mat.rho0, bulkModulusNeoHookean(mat), rho);
+    case EosKind::StiffenedGas:
+      return stiffenedGas(mat.gamma, mat.p_inf, rho, e);
     case EosKind::IdealGas:
     default:
       return idealGas(mat.gamma, rho, e);

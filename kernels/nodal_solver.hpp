@@ -791,7 +791,7 @@ struct MixedCellBudget {
   double own_ratio[kMaxMaterials];
   double dissipation = 0.0;
   double present_mass = 0.0, present_alpha = 0.0;
-  double condensed_mass = 0.0;  // not ideal gases: their energy may go negative, in tension
+  double condensed_mass = 0.0;  // not of the gas family: their energy may go negative, in tension
   double gas_heat = 0.0;        // the gases' positive internal energy
 };
 
@@ -858,7 +858,7 @@ KOKKOS_FORCEINLINE_FUNCTION double dissipationShare(const State& s, Index c, int
                                                     const MixedCellBudget& budget) {
   // the paper's split (DESIGN §3): by volume fraction
   if (s.closure == MixtureClosure::EqualStrain) return s.alpha_ck(c, k) / budget.present_alpha;
-  const bool condensed = s.materials(k).eos != EosKind::IdealGas;
+  const bool condensed = !isGasFamily(s.materials(k));
   if (budget.dissipation < 0.0 && budget.condensed_mass > 0.0) {
     return condensed ? s.m_ck(c, k) / budget.condensed_mass : 0.0;
   }
@@ -881,7 +881,7 @@ KOKKOS_FORCEINLINE_FUNCTION void mixedCellBudget(const State& s, Index c, double
     if (!(alpha > 0.0)) continue;
     budget.present_mass += s.m_ck(c, k);
     budget.present_alpha += alpha;
-    if (s.materials(k).eos != EosKind::IdealGas) {
+    if (!isGasFamily(s.materials(k))) {
       budget.condensed_mass += s.m_ck(c, k);
     } else if (s.e_ck0(c, k) > 0.0) {
       budget.gas_heat += s.m_ck(c, k) * s.e_ck0(c, k);

@@ -229,7 +229,7 @@ KOKKOS_FORCEINLINE_FUNCTION void limitVelocitySlopesByGasEnergy(const RemapLayou
   double gas_energy = 1e300;
   for (int k = 0; k < layout.n_materials; ++k) {
     const double alpha = q(c, layout.alpha(k)), mass = q(c, layout.mass(k));
-    if (!(alpha > 0.0 && mass > 0.0) || materials(k).eos != EosKind::IdealGas) continue;
+    if (!(alpha > 0.0 && mass > 0.0) || !isGasFamily(materials(k))) continue;
     const double e = q(c, layout.energy(k)) / mass;
     gas_energy = e < gas_energy ? e : gas_energy;
   }
@@ -512,7 +512,7 @@ KOKKOS_FORCEINLINE_FUNCTION void cleanUpMaterials(const RemapLayout& layout,
     // gas below zero stays a material until it can.
     const bool takes_gas_below_zero =
         internal[k] < 0.0 && internal[main_material] + internal[k] < 0.0 &&
-        materials(main_material).eos == EosKind::IdealGas && alpha[k] > 0.0;
+        isGasFamily(materials(main_material)) && alpha[k] > 0.0;
     if ((alpha[k] <= alpha_floor && !takes_gas_below_zero) || !(mass[k] > 0.0)) {
       mass[main_material] += mass[k];
       internal[main_material] += internal[k];

@@ -119,7 +119,7 @@ MixedCellReport measureMixedCells(const FinalFields& fields,
   for (int k = 0; k < n_materials; ++k) {
     MaterialMixedCells m;
     m.material = k;
-    m.condensed = materials[std::size_t(k)].eos != EosKind::IdealGas;
+    m.condensed = isCondensed(materials[std::size_t(k)]);
     std::vector<double> pure_density;
     Range pure_p, mixed_p;
     for (Index c = 0; c < n_cells; ++c) {
