@@ -514,8 +514,13 @@ KOKKOS_FORCEINLINE_FUNCTION void cleanUpMaterials(const RemapLayout& layout,
         internal[k] < 0.0 && internal[main_material] + internal[k] < 0.0 &&
         isGasFamily(materials(main_material)) && alpha[k] > 0.0;
     if ((alpha[k] <= alpha_floor && !takes_gas_below_zero) || !(mass[k] > 0.0)) {
-      mass[main_material] += mass[k];
-      internal[main_material] += internal[k];
+      // A round-off negative mass goes to the heaviest material, which can
+      // afford it: the main material by volume may be a near-vacuum gas
+      // lighter than the deficit (the `ball` at --scale 0.5 took its gas to a
+      // negative mass, 3e-18 kg less 2e-17, and stopped).
+      const int sink = mass[k] > 0.0 || heaviest == k ? main_material : heaviest;
+      mass[sink] += mass[k];
+      internal[sink] += internal[k];
       alpha[k] = 0.0;
       mass[k] = 0.0;
       internal[k] = 0.0;
