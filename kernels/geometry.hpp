@@ -216,8 +216,10 @@ KOKKOS_INLINE_FUNCTION CellThermo cellThermo(const State& s, Index c, double vol
       deviator += alpha * loadSym(s.S_ck, c, k);
     }
   }
-  if (present > 1 && active_alpha != 1.0) {  // traces left out: renormalise
-    const double scale = 1.0 / active_alpha;
+  if (present > 1) {  // traces left out: renormalise
+    // (a trace at alpha ~ 1e-16 leaves active_alpha at 1 to the bit: it still
+    // takes the mixture's pressure, not a stale or zero one)
+    const double scale = active_alpha != 1.0 ? 1.0 / active_alpha : 1.0;
     mix.pressure *= scale;
     deviator = scale * deviator;
     for (int k = 0; k < s.n_materials; ++k) {

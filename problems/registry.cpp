@@ -24,11 +24,14 @@ extern const Problem kTaylorProblem;
 extern const Problem kShellProblem;
 extern const Problem kBeamProblem;
 extern const Problem kBallProblem;
+extern const Problem kAdvectionProblem;
+extern const Problem kAdvection1DProblem;
 
 const std::vector<Problem>& problemRegistry() {
   static const std::vector<Problem> problems = {kSodProblem,    kSedovProblem, kWilkinsProblem,
                                                 kTaylorProblem, kPileProblem,  kBeamProblem,
-                                                kShellProblem,  kBallProblem};
+                                                kShellProblem,  kBallProblem,  kAdvectionProblem,
+                                                kAdvection1DProblem};
   return problems;
 }
 
