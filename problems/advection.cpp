@@ -27,9 +27,11 @@ enum AdvectionMaterial : int { kBody = 0, kGas = 1 };
 // units in the last place (1e-13, relative) to a density or a velocity, over
 // the run's steps; a stiff material's pressure moves by K drho / rho (K = rho
 // a^2 = 79 GPa for the aluminium), so its relative error is K / p0 times the
-// density's. Measured (2026-12-03): densities within 7e-11 and velocities
-// within 3e-10 after 3255 steps (advection1d), against 3.3e-10.
+// density's; the velocity, pushed by those pressure errors, gets ten times
+// the allowance. Measured (2026-12-03): densities within 7e-11 and velocities
+// within 3.2e-10 after 3255 steps (advection1d, both closures).
 constexpr double kRoundOffPerStep = 1e-13;
+constexpr double kVelocityRoundOffPerStep = 1e-12;
 
 void declareAdvection(Config& config, bool two_d) {
   const std::string name = two_d ? "advection" : "advection1d";
@@ -238,8 +240,9 @@ std::vector<Check> finishAdvection(const Config& config, const FinalFields& fiel
   checks.push_back({"uniform_pressure", pressure, 0.0, round_off * stiffness,
                     "max |p - p0| / p0 over the cells' and their materials' pressures (round-off: "
                     "1e-13 per step times the aluminium's bulk modulus / p0)"});
-  checks.push_back({"uniform_velocity", velocity, 0.0, round_off,
-                    "max |v - v0| / |v0| over the cells (round-off: 1e-13 per step)"});
+  checks.push_back({"uniform_velocity", velocity, 0.0,
+                    round_off * kVelocityRoundOffPerStep / kRoundOffPerStep,
+                    "max |v - v0| / |v0| over the cells (round-off: 1e-12 per step)"});
   checks.push_back({"material_density", density, 0.0, round_off,
                     "max K^k |rho^k - rho^k_0| / (rho^k_0 K_Al) over the materials above "
                     "alpha_trace in every cell, K = rho a^2 (round-off: 1e-13 per step; each "
