@@ -1413,6 +1413,34 @@ def plot_field_maps(run: Run, out_path: str) -> str:
     return save(fig, out_path)
 
 
+def plot_fields_vs_lagrange(run: Run, out_path: str) -> Optional[str]:
+    """The remap run's final density and pressure beside its lagrange
+    partner's, each field on one colour scale (the lagrange run's range, as
+    the paper's figures share theirs): a remap cell outside it saturates.
+    scripts/compare_fields.py puts numbers on the difference.  Drawn for a
+    remap run with a lagrange partner."""
+    partner = run.partner
+    if run.mode != "remap" or partner is None or partner.mode != "lagrange":
+        return None
+    snaps = {"lagrange": final_snapshot(partner), "remap": final_snapshot(run)}
+    fig, axes = plt.subplots(2, 2, figsize=(13, 8.5), constrained_layout=True)
+    handles = []
+    for row, field in enumerate(("density", "pressure")):
+        lagrange_values = snaps["lagrange"].field(field)[snaps["lagrange"].layer()]
+        limits = (float(np.nanmin(lagrange_values)), float(np.nanmax(lagrange_values)))
+        if field == "density":  # (the gas of the remap run: down to zero)
+            limits = (0.0, limits[1])
+        for col, (mode, owner) in enumerate((("lagrange", partner), ("remap", run))):
+            ax = axes[row][col]
+            handles = draw_field_map(fig, ax, owner, snaps[mode], field, limits,
+                                     colorbar=(col == 1)) or handles
+            ax.set_title(f"{mode}: {field_word('rho' if field == 'density' else 'p')}")
+    if handles:
+        axes[0][1].legend(handles=handles, loc="upper right", fontsize="small", framealpha=0.8)
+    fig.suptitle(run_title(run, "Final fields, lagrange and remap on one colour scale each"))
+    return save(fig, out_path)
+
+
 def plot_density_snapshots(run: Run, out_path: str) -> Optional[str]:
     """Density at the run's snapshot times (initial, requested, final; at most
     six, evenly picked), one colour scale, solid contours on top: the paper's
@@ -1528,6 +1556,7 @@ GENERIC_PLOTS: List[Plot] = [
     Plot("radial_pressure.png", "radial.csv", partial(plot_radial, field="p")),
     Plot("slice_fields.png", "slice_z.csv", plot_slice_fields),
     Plot("fields_map.png", "fields.xmf", plot_field_maps, maps_apply),
+    Plot("fields_vs_lagrange.png", "fields.xmf", plot_fields_vs_lagrange, maps_apply),
     Plot("density_snapshots.png", "fields.xmf", plot_density_snapshots, maps_apply),
     Plot("history.png", "history.csv", plot_history),
 ]
