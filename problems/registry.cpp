@@ -26,12 +26,15 @@ extern const Problem kBeamProblem;
 extern const Problem kBallProblem;
 extern const Problem kAdvectionProblem;
 extern const Problem kAdvection1DProblem;
+extern const Problem kAirHeliumProblem;
+extern const Problem kWaterAirProblem;
 
 const std::vector<Problem>& problemRegistry() {
   static const std::vector<Problem> problems = {kSodProblem,    kSedovProblem, kWilkinsProblem,
                                                 kTaylorProblem, kPileProblem,  kBeamProblem,
                                                 kShellProblem,  kBallProblem,  kAdvectionProblem,
-                                                kAdvection1DProblem};
+                                                kAdvection1DProblem, kAirHeliumProblem,
+                                                kWaterAirProblem};
   return problems;
 }
 

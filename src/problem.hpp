@@ -128,6 +128,9 @@ struct Problem {
   const char* probe_name = nullptr;
   // Snapshot times when the command line gives none (PROBLEMS.md), those up to t_end.
   std::vector<double> default_output_times = {};
+  // Why the mixed_cells check (src/mixed_cells.hpp) does not apply to this
+  // problem, reported with it; nullptr: it applies in remap mode.
+  const char* mixed_cells_not_applicable = nullptr;
 };
 
 const std::vector<Problem>& problemRegistry();

@@ -215,8 +215,11 @@ RunResult runProblem(const RunOptions& options) {
   if (problem.probe && writer) writeProbe(dir + "/probe.csv", problem, result.fields);
   if (!result.failed) {
     result.checks = problem.finish(options.config, result.fields, writer ? dir : "");
-    if (result.mixed_cells && result.mixed_cells->hasCondensed())
+    if (result.mixed_cells && result.mixed_cells->hasCondensed()) {
       result.checks.push_back(mixedCellsCheck(*result.mixed_cells));
+      if (problem.mixed_cells_not_applicable)
+        result.checks.back().doesNotApply(problem.mixed_cells_not_applicable);
+    }
   }
   if (writer) writeSummary(dir + "/summary.json", simulation, result);
   return result;
