@@ -1,4 +1,4 @@
-// Boundary conditions per side of the generated block (DESIGN §3, nodal solver).
+// Boundary conditions per side of the generated block (docs/method.md §A4).
 #pragma once
 
 #include <array>

@@ -1,6 +1,6 @@
 // The one place that bridges Kokkos 3.x and 4.x spellings, so the kernels
 // compile unchanged against the Kokkos 3.4.01 built by scripts/setup.sh and any
-// newer Kokkos a user points Kokkos_ROOT at (DESIGN §6).
+// newer Kokkos a user points Kokkos_ROOT at (docs/building.md §2).
 #pragma once
 
 #include <Kokkos_Core.hpp>

@@ -1,4 +1,4 @@
-// The per-material parameter record (DESIGN §4). A material is a small POD
+// The per-material parameter record (docs/method.md §A7). A material is a small POD
 // record selected by enums, so kernels switch on it without virtual calls on
 // the device and a table of them lives in a View.
 #pragma once
@@ -7,7 +7,7 @@
 
 namespace lagremap {
 
-// NeoHookean is the volumetric half of the hyper-elastic model (DESIGN §4): its
+// NeoHookean is the volumetric half of the hyper-elastic model (docs/method.md §A7): its
 // pressure depends on J = rho0/rho only, so it is an EOS like the others and
 // every caller of evaluateEos (time step, nodal solver impedance) gets a real
 // bulk sound speed for a Neo-Hookean solid without knowing about strength.
@@ -15,7 +15,7 @@ namespace lagremap {
 // p_inf = 0 is the ideal gas).
 enum class EosKind : int { IdealGas = 0, MieGruneisen = 1, NeoHookean = 2, StiffenedGas = 3 };
 
-// Deviatoric response (DESIGN §4): None for fluids, HypoElastic = Wilkins
+// Deviatoric response (docs/method.md §A7): None for fluids, HypoElastic = Wilkins
 // Jaumann rate + radial return, NeoHookean = hyper-elastic from B.
 enum class StrengthKind : int { None = 0, HypoElastic = 1, NeoHookean = 2 };
 

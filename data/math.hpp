@@ -1,4 +1,4 @@
-// Small aggregate value types for device code (STYLE §7): Vec3, Mat3 (full
+// Small aggregate value types for device code (CONTRIBUTING.md style 6): Vec3, Mat3 (full
 // 3x3, row-major) and SymMat3 (xx, yy, zz, xy, yz, xz). All operations are
 // KOKKOS_INLINE_FUNCTION and allocation-free so they run on any backend.
 #pragma once
@@ -196,7 +196,7 @@ KOKKOS_INLINE_FUNCTION SymMat3Of<Real> operator-(const SymMat3Of<Real>& a,
                                                  const SymMat3Of<Real>& b) {
   return {a.xx - b.xx, a.yy - b.yy, a.zz - b.zz, a.xy - b.xy, a.yz - b.yz, a.xz - b.xz};
 }
-// Frobenius norm sqrt(a : a), the von Mises measure of a deviator (DESIGN §4).
+// Frobenius norm sqrt(a : a), the von Mises measure of a deviator (docs/method.md §A7).
 KOKKOS_INLINE_FUNCTION double norm(const SymMat3& a) {
   return math::sqrt(ddot(a, a));
 }

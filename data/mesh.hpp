@@ -1,4 +1,4 @@
-// Unstructured hexahedral mesh in flat SoA Views (DESIGN §6): what the kernels
+// Unstructured hexahedral mesh in flat SoA Views (docs/method.md §7.5): what the kernels
 // read. Built once on the host and mirrored to the device (src/mesh_setup.hpp).
 #pragma once
 
@@ -11,7 +11,7 @@ struct Mesh {
   Index n_nodes = 0, n_cells = 0;
   int nx = 0, ny = 0, nz = 0;  // block dimensions (cell id = i + nx (j + ny k))
 
-  // Domain decomposition (DESIGN §6, src/decomposition.hpp). A rank holds the
+  // Domain decomposition (docs/method.md §7.5, src/decomposition.hpp). A rank holds the
   // cells it owns and ghost cells round them, and their nodes, numbered in
   // increasing global id: node sums, upwind ties and face owners then pick the
   // same cells as on one rank, so results do not depend on the rank count.
@@ -29,7 +29,7 @@ struct Mesh {
   CellFacesView cell_neighbors;
   CellFacesView cell_face_side;  // box side of a boundary face, -1 for interior faces
   // The neighbour's local face that is face f of the cell, -1 on the boundary: both
-  // sides of an interior face find the same swept triangles (remap, DESIGN §5).
+  // sides of an interior face find the same swept triangles (remap, docs/method.md §A9).
   CellFacesView cell_neighbor_face;
 
   // node -> corner CRS; corner id = 8 * cell + local node. Sorted by corner id,

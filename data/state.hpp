@@ -1,4 +1,4 @@
-// Cell, corner and node fields of the Lagrangian phase (DESIGN §3), flat SoA
+// Cell, corner and node fields of the Lagrangian phase (docs/method.md §A3), flat SoA
 // Views allocated once before the time loop.
 #pragma once
 
@@ -29,7 +29,7 @@ struct State {
   RealView E_c;
   MaterialView materials;  // material table
 
-  // Per material k (DESIGN §3), allocated by initializeState once the table is
+  // Per material k (docs/method.md §A3), allocated by initializeState once the table is
   // known. A material is present in a cell when alpha > 0; a pure cell (one
   // material) is the lagrange-mode case, mixed cells come with the remap.
   int n_materials = 0;
@@ -59,7 +59,7 @@ struct State {
   MatVec3View n_ck;
 
   // Derived at every stage from the node positions (computeGeometry); the
-  // mixture rules of DESIGN §3 give p = sum alpha^k p^k, S = sum alpha^k S^k,
+  // mixture rules of docs/method.md §A3 give p = sum alpha^k p^k, S = sum alpha^k S^k,
   // aL^2 = sum (m^k/m) aL_k^2, aT^2 likewise.
   RealView vol_c, rho_c, e_c, p_c, aL_c, aT_c, len_c;
   Sym6View S_c;     // mixture deviatoric Cauchy stress (0 in fluids)

@@ -1,5 +1,5 @@
 // Every View alias, the execution and memory spaces, and the scalar/index types
-// used by lagremap (STYLE §2). Views use the default layout of the execution
+// used by lagremap (CONTRIBUTING.md style 2). Views use the default layout of the execution
 // space's memory (LayoutRight on host, LayoutLeft on CUDA/HIP), so the same
 // kernels are coalesced on GPUs and cache-friendly on CPUs.
 #pragma once

@@ -1,7 +1,7 @@
-// Deviatoric (strength) models of DESIGN §4, as pointwise device functions: the
+// Deviatoric (strength) models of docs/method.md §A7, as pointwise device functions: the
 // Wilkins hypo-elastic update with radial return, and the Neo-Hookean
 // hyper-elastic stress from the left Cauchy-Green tensor B. Stress is the Cauchy
-// stress, tension positive, sigma = -p I + S (DESIGN §1). The velocity gradient
+// stress, tension positive, sigma = -p I + S (docs/method.md §A1). The velocity gradient
 // is L_ij = dV_i/dx_j (row i = velocity component, column j = derivative).
 #pragma once
 
@@ -19,7 +19,7 @@ KOKKOS_INLINE_FUNCTION double rowDot(const Mat3& A, int i, const Mat3& F, int j)
 
 // F B F^T, symmetric by construction (only the six independent entries are
 // formed). With F the deformation gradient over a step this advances the left
-// Cauchy-Green tensor, B_{n+1} = F B_n F^T, the exact integral of DESIGN §4's
+// Cauchy-Green tensor, B_{n+1} = F B_n F^T, the exact integral of docs/method.md §A7's
 // dB/dt = L B + B L^T for that F; it keeps B positive definite whenever F is
 // invertible, which a forward-Euler step of the ODE does not guarantee.
 KOKKOS_INLINE_FUNCTION SymMat3 pushForward(const Mat3& F, const SymMat3& B) {
@@ -28,7 +28,7 @@ KOKKOS_INLINE_FUNCTION SymMat3 pushForward(const Mat3& F, const SymMat3& B) {
           detail::rowDot(FB, 0, F, 1), detail::rowDot(FB, 1, F, 2), detail::rowDot(FB, 0, F, 2)};
 }
 
-// Hypo-elastic Wilkins model, DESIGN §4: dS/dt = 2 mu D0 + W S - S W with
+// Hypo-elastic Wilkins model, docs/method.md §A7: dS/dt = 2 mu D0 + W S - S W with
 // D = sym(L), D0 = dev(D), W = skew(L). The W terms make the rate objective (a
 // rigid spin only rotates S). Over a step the spin part is integrated by the
 // Hughes-Winget rotation Q = (I - dt/2 W)^-1 (I + dt/2 W), the Cayley
@@ -55,7 +55,7 @@ struct ReturnMapResult {
 };
 
 // Radial return to the von Mises surface ||S|| = sqrt(S:S) = sqrt(2/3) Y0
-// (perfect plasticity, DESIGN §4). For J2 plasticity with a constant shear
+// (perfect plasticity, docs/method.md §A7). For J2 plasticity with a constant shear
 // modulus the closest-point projection is this radial scaling of the deviator;
 // the plastic work then reaches e through rho de/dt = sigma : grad V. States on
 // or inside the surface are returned unchanged (bit for bit).
@@ -66,7 +66,7 @@ KOKKOS_INLINE_FUNCTION ReturnMapResult radialReturn(const SymMat3& S_trial, doub
   return {S_trial, false};
 }
 
-// Neo-Hookean deviator S = (mu/J) dev(Bbar), Bbar = det(B)^{-1/3} B (DESIGN §4).
+// Neo-Hookean deviator S = (mu/J) dev(Bbar), Bbar = det(B)^{-1/3} B (docs/method.md §A7).
 // The isochoric scaling uses det(B) rather than J^2 = (rho0/rho)^2: B and the
 // density are advanced by different discretisations, and normalising B by its
 // own determinant keeps a pure volume change (B = c I) stress-free in shear
@@ -80,7 +80,7 @@ struct PressureDeviator {
   SymMat3 S;
 };
 
-// Both halves of the Neo-Hookean Cauchy stress (DESIGN §4), for kernels that
+// Both halves of the Neo-Hookean Cauchy stress (docs/method.md §A7), for kernels that
 // store p and S separately, as for the hypo-elastic solids. The pressure is the
 // same function the EosKind::NeoHookean branch of evaluateEos uses.
 KOKKOS_INLINE_FUNCTION PressureDeviator neoHookeanPressureDeviator(const SymMat3& B, double J,
@@ -89,7 +89,7 @@ KOKKOS_INLINE_FUNCTION PressureDeviator neoHookeanPressureDeviator(const SymMat3
 }
 
 // Cauchy stress sigma = -p I + S, p = -kappa/2 [(J-1) + ln(J)/J],
-// S = (mu/J) dev(det(B)^{-1/3} B), J = rho0/rho (DESIGN §4).
+// S = (mu/J) dev(det(B)^{-1/3} B), J = rho0/rho (docs/method.md §A7).
 KOKKOS_INLINE_FUNCTION SymMat3 neoHookeanStress(const SymMat3& B, double J, double mu,
                                                 double kappa) {
   const PressureDeviator split = neoHookeanPressureDeviator(B, J, mu, kappa);

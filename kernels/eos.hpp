@@ -1,4 +1,4 @@
-// Equations of state (DESIGN §4) of the material record in
+// Equations of state (docs/method.md §A7) of the material record in
 // data/material_params.hpp.
 #pragma once
 
@@ -35,7 +35,7 @@ KOKKOS_INLINE_FUNCTION ThermoState stiffenedGas(double gamma, double p_inf, doub
 }
 
 // Mie-Grüneisen with a linear U_s-u_p Hugoniot as reference curve, written in
-// eta = rho/rho0 (DESIGN §4, with the paper's typo in f corrected):
+// eta = rho/rho0 (docs/method.md §A7, with the paper's typo in f corrected):
 //   p   = rho0 a0^2 f(eta) + rho0 Gamma0 e,
 //   f   = (eta-1) [eta - Gamma0 (eta-1)/2] / (eta - s(eta-1))^2,
 //   a^2 = a0^2 f'(eta) + (Gamma0/rho0) p / eta^2,
@@ -59,7 +59,7 @@ KOKKOS_INLINE_FUNCTION ThermoState mieGruneisen(double rho0, double a0, double G
 }
 
 // Shear modulus of the strength model: mu itself for hypo-elasticity,
-// E/(2(1+nu)) for Neo-Hookean (DESIGN §4), zero for a fluid.
+// E/(2(1+nu)) for Neo-Hookean (docs/method.md §A7), zero for a fluid.
 KOKKOS_INLINE_FUNCTION double shearModulus(const MaterialParams& mat) {
   switch (mat.strength) {
     case StrengthKind::HypoElastic:
@@ -72,7 +72,7 @@ KOKKOS_INLINE_FUNCTION double shearModulus(const MaterialParams& mat) {
   }
 }
 
-// kappa = lambda + 2/3 mu with lambda = E nu/((1+nu)(1-2nu)) (DESIGN §4).
+// kappa = lambda + 2/3 mu with lambda = E nu/((1+nu)(1-2nu)) (docs/method.md §A7).
 KOKKOS_INLINE_FUNCTION double bulkModulusNeoHookean(const MaterialParams& mat) {
   const double E = mat.young;
   const double nu = mat.poisson;
@@ -82,7 +82,7 @@ KOKKOS_INLINE_FUNCTION double bulkModulusNeoHookean(const MaterialParams& mat) {
 }
 
 // Neo-Hookean volumetric pressure p = -kappa/2 [(J-1) + ln(J)/J], J = rho0/rho
-// (DESIGN §4); constitutive.hpp's neoHookeanStress uses the same function.
+// (docs/method.md §A7); constitutive.hpp's neoHookeanStress uses the same function.
 KOKKOS_INLINE_FUNCTION double neoHookeanPressure(double J, double kappa) {
   return -0.5 * kappa * ((J - 1.0) + math::log(J) / J);
 }

@@ -1,4 +1,4 @@
-// Geometry phase (DESIGN §2-3): from the node positions, every cell's volume,
+// Geometry phase (docs/method.md §A2-A4): from the node positions, every cell's volume,
 // centroid, length and corner vectors A_cp; then its density, internal energy,
 // pressure and sound speeds, and the corner impedance of the nodal solver
 //   M_cp = sum_f s_pf Q_cfp,  s_pf Q_cfp = rho [aL s n (x) n + aT s (I - n (x) n)];
@@ -20,7 +20,7 @@ KOKKOS_INLINE_FUNCTION void gatherCellNodes(const CellNodesView& cell_nodes, con
   for (int p = 0; p < 8; ++p) x[p] = loadVec3(x_n, cell_nodes(c, p));
 }
 
-// Mixture closure of one cell (DESIGN §3): each present material's density
+// Mixture closure of one cell (docs/method.md §A3): each present material's density
 // rho^k = m^k / (alpha^k v), pressure, sound speeds and deviator, combined into
 //   p = sum alpha^k p^k,  S = sum alpha^k S^k,
 //   aL^2 = sum (m^k/m) aL_k^2,  aT^2 = sum (m^k/m) aT_k^2,
@@ -37,7 +37,7 @@ struct CellThermo {
 };
 
 // Volume fractions of a mixed cell at the end of a Lagrangian stage
-// (docs/method.md §4.2-4.4, departures from DESIGN §3's equal strain):
+// (docs/method.md §4.2-4.4, departures from §A3's equal strain):
 // - shared volume change: the cell's change since the start of the step goes
 //   to its materials in proportion to their compressibility w^k = alpha^k /
 //   (rho^k a_k^2), alpha^k v = alpha^k_n v_n + (w^k_n / sum w_n) (v - v_n);
@@ -208,7 +208,7 @@ KOKKOS_INLINE_FUNCTION CellThermo cellThermo(const State& s, Index c, double vol
                                    : 0.0);
     s.w_ck(c, k) = thermo.sound_speed2 > 0.0 ? alpha / (rho * longitudinal2) : 0.0;
     if (material.strength == StrengthKind::NeoHookean) {
-      // Hyper-elastic deviator from B (DESIGN §4), J = rho0 / rho^k.
+      // Hyper-elastic deviator from B (docs/method.md §A7), J = rho0 / rho^k.
       const SymMat3 S = neoHookeanDeviator(loadSym(s.B_ck, c, k), material.rho0 / rho, mu);
       storeSym(s.S_ck, c, k, S);
       deviator += alpha * S;
@@ -255,7 +255,7 @@ enum class StageEnd {
 
 // Thermodynamic closure and corner impedance of one cell of known geometry
 // (volume, centroid, corner vectors and corner-face sums), and its time-step
-// candidates folded into `best` (DESIGN §2-3).
+// candidates folded into `best` (docs/method.md §A3-A4, §A6).
 // `end_of_stage`: the nodes have just moved in a Lagrangian stage, so a mixed
 // cell's volume change is shared among its materials first.
 KOKKOS_INLINE_FUNCTION void cellThermoOnGeometry(const hex::CellGeometry& geo, const State& s,
@@ -281,7 +281,7 @@ KOKKOS_INLINE_FUNCTION void cellThermoOnGeometry(const hex::CellGeometry& geo, c
   s.aL_c(c) = aL;
   s.aT_c(c) = aT;
 
-  // Corner impedance (DESIGN §3, nodal solver) from the corner-face sums.
+  // Corner impedance (docs/method.md §A4) from the corner-face sums.
   const double rho_aL = rho * aL, rho_aT = rho * aT;
   for (int p = 0; p < 8; ++p) {
     SymMat3 impedance = (rho_aL - rho_aT) * geo.normal_moment[p];
@@ -346,7 +346,7 @@ KOKKOS_INLINE_FUNCTION int chunkCells(Index n_cells, Index first) {
 }
 
 // The geometry of every cell of a mesh that does not move: the remap's target,
-// the initial mesh, which every remap step ends on (DESIGN §5). Its volumes,
+// the initial mesh, which every remap step ends on (docs/method.md §A9). Its volumes,
 // centroids, corner vectors and corner-face sums are computed once, not after
 // every remap: 680 bytes a cell for a third of the step's geometry work.
 using CellGeometryView = DeviceView<hex::CellGeometry*>;

@@ -1,4 +1,4 @@
-// Geometry of one 8-node hexahedron (VTK_HEXAHEDRON order), DESIGN §2: each
+// Geometry of one 8-node hexahedron (VTK_HEXAHEDRON order), docs/method.md §A2: each
 // (possibly non-planar) quadrilateral face is split into 4 triangles around its
 // face point (the mean of its 4 nodes); the cell is the 24-facet polyhedron they
 // bound. Everything here is a per-cell device function, reused by the kernels,
@@ -29,7 +29,7 @@ KOKKOS_INLINE_FUNCTION void faceTriangles(const Vec3 q[4], Vec3 tri[4]) {
   for (int k = 0; k < 4; ++k) tri[k] = 0.5 * cross(q[(k + 1) & 3] - q[k], face_point - q[k]);
 }
 
-// Corner-face area vectors from the triangles (DESIGN §2):
+// Corner-face area vectors from the triangles (docs/method.md §A2):
 //   s_pf n_pf = 1/3 ( sum of the 2 triangles holding p + 1/4 sum of the 4 triangles )
 // w[k]: vector of node q[k]. Returns the face's total area vector.
 KOKKOS_INLINE_FUNCTION Vec3 cornerVectorsOfTriangles(const Vec3 tri[4], Vec3 w[4]) {
@@ -94,7 +94,7 @@ KOKKOS_INLINE_FUNCTION CellShape cellShape(const Vec3 x[8]) {
 // Everything the Lagrangian phase needs from one cell's geometry in a single
 // sweep over its 24 triangles: the corner vectors A_cp, the volume, centroid
 // and max face area, and the two sums over a corner's 3 corner faces that the
-// nodal impedance is made of (DESIGN §3),
+// nodal impedance is made of (docs/method.md §A4),
 //   sum_f s_pf Q_cfp = rho (aL - aT) sum_f s_pf n_pf (x) n_pf + rho aT (sum_f s_pf) I,
 // so the 24 corner-face vectors never need to be stored. A tetrahedron
 // (origin, a, b, face point) has volume 1/3 (a - origin) . s_t n_t, so the
@@ -377,7 +377,7 @@ KOKKOS_INLINE_FUNCTION void prismGeometry(const Vec3 x[8], CellGeometry& g) {
   if constexpr (kCornerSums) prismCornerSums(height, edge_x, edge_y, edge2, doubled, twice_area, g);
 }
 
-// The 8 corner vectors A_cp = sum_f s_pf n_pf = d v_c / d x_p (GCL, DESIGN §2).
+// The 8 corner vectors A_cp = sum_f s_pf n_pf = d v_c / d x_p (GCL, docs/method.md §A2).
 KOKKOS_INLINE_FUNCTION void cornerVectors(const Vec3 x[8], Vec3 corner[8]) {
   for (int p = 0; p < 8; ++p) corner[p] = Vec3{0.0, 0.0, 0.0};
   for (int f = 0; f < 6; ++f) {

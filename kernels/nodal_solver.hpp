@@ -1,4 +1,4 @@
-// Nodal solver and corner forces (DESIGN §3), in three kernels per stage (the
+// Nodal solver and corner forces (docs/method.md §A4), in three kernels per stage (the
 // corner vectors A_cp and impedances M_cp come from computeGeometry):
 //   computeCornerTerms: per cell, reconstruct V and sigma at the nodes and
 //                       B_cp = M_cp V_c(p) - sigma_c(p) A_cp;
@@ -103,7 +103,7 @@ KOKKOS_FORCEINLINE_FUNCTION hex::CellPack magnitude(hex::CellPack v) {
 #endif
 
 // What stands across face f of a cell in its reconstruction stencil
-// (DESIGN §3): a neighbour; across a wall, the cell's mirror image; nothing
+// (docs/method.md §A5, §2.1): a neighbour; across a wall, the cell's mirror image; nothing
 // (a free side: a zero jump).
 enum class StencilFace : unsigned char { Neighbour, Mirror, None };
 
@@ -139,7 +139,7 @@ KOKKOS_FORCEINLINE_FUNCTION Vec3Of<Real> zeroVec3() {
   return {Real{}, Real{}, Real{}};
 }
 
-// The face-neighbour stencil of a cell for the reconstruction (DESIGN §3):
+// The face-neighbour stencil of a cell for the reconstruction (docs/method.md §A5):
 // the least-squares normal matrix, the right-hand sides of V and of the
 // pressure (a fluid) or the Cauchy stress (a solid), and the neighbour jumps
 // the limiters measure against. Across a wall the neighbour is the cell's
@@ -497,7 +497,7 @@ inline CornerTerms cornerTerms(const Mesh& mesh, const State& state,
 
 }  // namespace detail
 
-// Per cell: V and sigma reconstructed at its nodes (DESIGN §3: piecewise
+// Per cell: V and sigma reconstructed at its nodes (docs/method.md §A5: piecewise
 // constant at first order; second order: least-squares gradients limited by
 // one frame-independent factor each, a solid's whole Cauchy stress as a
 // tensor, a fluid's pressure as a scalar), then B_cp = M_cp V_c(p) -
@@ -726,7 +726,7 @@ inline void moveGhostNodes(const Mesh& mesh, const State& state, double dt_stage
       });
 }
 
-// Velocity gradient of the stage, L = (1/v) sum_p V_p (x) A_cp (DESIGN §4).
+// Velocity gradient of the stage, L = (1/v) sum_p V_p (x) A_cp (docs/method.md §A2).
 KOKKOS_INLINE_FUNCTION Mat3 velocityGradient(const CellNodesView& cell_nodes, const State& s,
                                              Index c) {
   Mat3 gradient = zeroMat();
@@ -754,7 +754,7 @@ KOKKOS_INLINE_FUNCTION double stressPower(const State& s, Index c, int k, const 
 }
 
 // Incremental deformation gradient over the stage, exact for affine motion
-// (DESIGN §4): F = (1/v^n) sum_p x_p^new (x) A_cp^n, with the geometry of the
+// (docs/method.md §A7, §3.3): F = (1/v^n) sum_p x_p^new (x) A_cp^n, with the geometry of the
 // start of the step recomputed from x_n0.
 KOKKOS_INLINE_FUNCTION Mat3 stageDeformation(const CellNodesView& cell_nodes, const Vec3View& x_n,
                                              const State& s, Index c) {
@@ -850,13 +850,13 @@ KOKKOS_FORCEINLINE_FUNCTION double materialWork(const State& s, Index c, int k,
 
 // Material k's share of D: by mass for D >= 0 (kinetic energy of the cell's
 // one velocity turned into heat: the mass carries it; by volume fraction, as
-// DESIGN §3 says, a gas beside a solid got half the heat for 1e-9 of the
+// method.md §A8 says, a gas beside a solid got half the heat for 1e-9 of the
 // mass). D < 0 is an error of the second-order corner velocities, which a gas
 // cannot afford below zero energy: it goes to the condensed materials by
 // mass, and only without them to the gases by their internal energies.
 KOKKOS_FORCEINLINE_FUNCTION double dissipationShare(const State& s, Index c, int k,
                                                     const MixedCellBudget& budget) {
-  // the paper's split (DESIGN §3): by volume fraction
+  // the paper's split (docs/method.md §A8): by volume fraction
   if (s.closure == MixtureClosure::EqualStrain) return s.alpha_ck(c, k) / budget.present_alpha;
   const bool condensed = !isGasFamily(s.materials(k));
   if (budget.dissipation < 0.0 && budget.condensed_mass > 0.0) {
@@ -896,7 +896,7 @@ KOKKOS_FORCEINLINE_FUNCTION void mixedCellBudget(const State& s, Index c, double
 
 }  // namespace detail
 
-// The materials of one cell over the stage (DESIGN §3-4), given the cell's new
+// The materials of one cell over the stage (docs/method.md §A7-A8), given the cell's new
 // specific internal energy e_new = E - |V|^2/2:
 // - internal energies: a pure cell's material takes e_new; in a mixed cell
 //   m^k (e^k - e^k,n) = W^k + share^k D (detail::dissipationShare), which
@@ -975,7 +975,7 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
 }
 
 // Corner forces and the update of one cell from the start-of-step state
-// (DESIGN §3): F_cp = M_cp V_p - B_cp,
+// (docs/method.md §A4): F_cp = M_cp V_p - B_cp,
 //   m_c dV_c/dt = sum_p F_cp,  m_c dE_c/dt = sum_p F_cp . V_p,
 // and dv_c/dt = sum_p A_cp . V_p for the next time step.
 KOKKOS_INLINE_FUNCTION void updateCell(const CellNodesView& cell_nodes, const Vec3View& x_n,

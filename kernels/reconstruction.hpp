@@ -1,4 +1,4 @@
-// Piecewise-linear reconstruction (DESIGN §3 second order, §5): least-squares
+// Piecewise-linear reconstruction (docs/method.md §A5, §A10): least-squares
 // gradients over face neighbours and the Barth-Jespersen family of limiters.
 //
 // Across a wall/symmetry face the missing neighbour is replaced by the mirror
@@ -110,7 +110,7 @@ KOKKOS_INLINE_FUNCTION Real cellLimiter(const VertexExcursionOf<Real>& excursion
   return limiter;
 }
 
-// Limiter factor of one vertex (DESIGN §5):
+// Limiter factor of one vertex (docs/method.md §A10):
 //   min((psi_max - psi_c)/(psi_p - psi_c), beta) if psi_p > psi_c, min((psi_min - psi_c)/..., beta)
 //   if psi_p < psi_c, beta otherwise. beta = 1: Barth-Jespersen; beta = 2: compressive.
 KOKKOS_INLINE_FUNCTION double vertexLimiter(double delta, double center, const Bounds& bounds,
@@ -124,7 +124,7 @@ KOKKOS_INLINE_FUNCTION double vertexLimiter(double delta, double center, const B
   return ratio < beta ? ratio : beta;
 }
 
-// Frame-independent limiter of a vector or tensor field psi (DESIGN §5 for a
+// Frame-independent limiter of a vector or tensor field psi (docs/method.md §A10 for a
 // field that is not a scalar; docs/method.md §2.3). At each vertex p the
 // unlimited excursion delta_p = G d_p (G the least-squares gradient,
 // d_p = x_p - x_c) is measured against the jumps j = psi_nb - psi_c projected

@@ -1,4 +1,4 @@
-// Remap phase (DESIGN §5): the Lagrangian state is carried back onto the
+// Remap phase (docs/method.md §A9-A11): the Lagrangian state is carried back onto the
 // initial mesh every step of `--mode remap`, in four kernels:
 //   remapDensities:  per cell, the remapped quantities per unit volume on the
 //                    Lagrangian cell: alpha^k, alpha^k rho^k, alpha^k rho^k e^k,
@@ -108,7 +108,7 @@ inline RemapFields allocateRemapFields(Index n_cells, const RemapLayout& layout)
 
 // Quantities the outer boundary exchanged in the sweep (mass, momentum xyz,
 // total energy): zero for walls, which sweep no volume; a moving traction
-// face books here what crossed it (PROBLEMS.md, pile).
+// face books here what crossed it (docs/verification.md §8.4, pile).
 using RemapBoundaryFlux = SumArray<5>;
 
 // Also the primitive variable of each column, which the gradients and the
@@ -175,7 +175,7 @@ struct GradientStencil {
   SymMat3 solver;
 };
 
-// Limited gradient of column v's primitive (DESIGN §5: Barth-Jespersen,
+// Limited gradient of column v's primitive (docs/method.md §A10: Barth-Jespersen,
 // compressive beta for the volume fractions), and for a volume fraction the
 // interface normal -grad alpha / |grad alpha| of the next Lagrangian steps
 // (unlimited: the limiter scales the gradient, and may zero it). A
@@ -256,7 +256,7 @@ KOKKOS_FORCEINLINE_FUNCTION void limitVelocitySlopesByGasEnergy(const RemapLayou
 
 }  // namespace detail
 
-// Limited least-squares gradients (DESIGN §5) on the Lagrangian mesh, stored
+// Limited least-squares gradients (docs/method.md §A10) on the Lagrangian mesh, stored
 // already multiplied by their limiter: psi(x) = psi_c + grad . (x - x_c).
 // Also stores each cell's reach, the largest distance from its centroid to a
 // vertex: every point of the cell is within it (remapUpdate's lever limit),
@@ -405,7 +405,7 @@ KOKKOS_FORCEINLINE_FUNCTION double boundedEnergyFlux(const RemapLayout& layout,
 }
 
 // Upwind flux of one interior face-side region of volume dvol and lever
-// M - x_up dV (DESIGN §5; docs/method.md §5.3-5.6): each material's volume second
+// M - x_up dV (docs/method.md §A9, §5.3-5.6): each material's volume second
 // order, its mass and energy by the product rule on the upwind alpha^k,
 // rho^k, e^k, its tensor on the volume flux; then momentum and kinetic energy
 // as a rigid parcel of the mass flux at the upwind velocity at the region's
@@ -585,7 +585,7 @@ KOKKOS_FORCEINLINE_FUNCTION void storeRemappedCell(const State& s, const RemapLa
 }  // namespace detail
 
 // Sum of the upwind fluxes of the cell's 12 face-side regions, the new state on
-// the initial mesh, clean-up and kinetic-energy fix (DESIGN §5). Returns what
+// the initial mesh, clean-up and kinetic-energy fix (docs/method.md §A9-A11). Returns what
 // crossed the outer boundary.
 inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state,
                                      const RemapLayout& layout, const RemapControls& controls,

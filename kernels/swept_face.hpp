@@ -1,5 +1,5 @@
-// Swept-face geometry of the remap (DESIGN §5), the first kernel of the remap
-// phase. Every face triangle of DESIGN §2, (q_k, q_k+1, face point) oriented out
+// Swept-face geometry of the remap (docs/method.md §A9), the first kernel of the remap
+// phase. Every face triangle of docs/method.md §A2, (q_k, q_k+1, face point) oriented out
 // of its cell, moves on straight paths from its Lagrangian position (a, b, c) to
 // its position on the initial mesh (a', b', c'). The region it sweeps is bounded
 // by the two triangles and three ruled (bilinear) side patches, each fixed by
@@ -28,7 +28,7 @@ struct SweptRegion {
 };
 
 // dV_t = 1/18 (d_a + d_b + d_c) . [e1 x e2 + e1' x e2' + 1/2 (e1 x e2' + e1' x e2)]
-// (DESIGN §5): the exact integral of d(xi) . J(tau) over xi in the triangle and
+// (docs/method.md §A9): the exact integral of d(xi) . J(tau) over xi in the triangle and
 // tau in [0, 1] for the map x(xi, tau) below. Only differences of positions
 // enter, so it keeps its relative accuracy far from the origin.
 KOKKOS_INLINE_FUNCTION double sweptVolume(const Vec3& a, const Vec3& b, const Vec3& c,
@@ -42,7 +42,7 @@ KOKKOS_INLINE_FUNCTION double sweptVolume(const Vec3& a, const Vec3& b, const Ve
   return dot(d_sum, twice_mean_area) / 18.0;
 }
 
-// Tensor rule of DESIGN §5 for x(xi, tau) = X(xi) + tau d(xi), X on the
+// Tensor rule of docs/method.md §A9 for x(xi, tau) = X(xi) + tau d(xi), X on the
 // Lagrangian triangle, d(xi) = X'(xi) - X(xi), Jacobian d(xi) . J(tau) with
 // J(tau) = (e1 + tau de1) x (e2 + tau de2). The integrand x d.J has degree 2 in
 // xi (edge-midpoint rule, exact for degree 2) and 3 in tau (2-point Gauss,
@@ -98,7 +98,7 @@ struct FaceLanes {
 
 // The 4 swept triangles of one face: q_lag / q_target are its 4 nodes in
 // outward order (hex::faceNode) on each mesh, and each polygon is split around
-// its own face point (DESIGN §2), which moves on a straight path like a node.
+// its own face point (docs/method.md §A2), which moves on a straight path like a node.
 // swept[k] belongs to triangle (q_k, q_k+1, face point). The triangles are
 // evaluated in lanes (triangle k in lane k: the same operations of
 // sweptTriangle in the same order on each lane, so the same bits), which the
@@ -225,7 +225,7 @@ KOKKOS_INLINE_FUNCTION bool staysInOneAxisPlane(const Vec3 q_lag[4], const Vec3 
 //                    neighbour (upwind: the neighbour);
 //   given  (side 1): those with dV_t < 0 (upwind: c itself),
 // and a triangle with dV_t = 0 joins the side of the lower cell id, the
-// upwind choice of DESIGN §5 for a tie. A region's flux is linear in its
+// upwind choice of method.md §A9 for a tie. A region's flux is linear in its
 // volume and first moment (F = dV q_up + grad(q)_up . (M - x_up dV)), so the
 // sum of the triangles' fluxes is the flux of the sum: the remap evaluates
 // one or two fluxes a face instead of four (docs/method.md §5.2, on the
@@ -255,7 +255,7 @@ inline SweptFaces allocateSweptFaces(const Mesh& mesh) {
 
 // Swept volumes and first moments of every face, by side, moving from the
 // Lagrangian node positions x_lag to the remap target x_target (the initial
-// mesh), DESIGN §5.
+// mesh), docs/method.md §A9.
 inline void computeSweptFaces(const Mesh& mesh, const Vec3View& x_lag, const Vec3View& x_target,
                               const SweptFaces& swept_faces) {
   const auto cell_nodes = mesh.cell_nodes;

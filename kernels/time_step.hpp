@@ -1,4 +1,4 @@
-// Time-step candidates of one cell (DESIGN §3, time step) and the failure
+// Time-step candidates of one cell (docs/method.md §A6) and the failure
 // codes found while evaluating them. The reduction packs (cell, reason) into
 // the location of a Kokkos::MinLoc so one parallel_reduce returns both.
 #pragma once

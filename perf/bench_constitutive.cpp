@@ -1,5 +1,5 @@
-// Google Benchmark drivers of the solid constitutive kernels (DESIGN §4) and of
-// the whole Lagrangian step on solid problems (STYLE §12):
+// Google Benchmark drivers of the solid constitutive kernels (docs/method.md §A7) and of
+// the whole Lagrangian step on solid problems (CONTRIBUTING.md style 11):
 //   BM_MieGruneisenEos     evaluateEos on the Al preset, densities 0.9-1.4 rho0
 //                          and energies 0-1 MJ/kg;
 //   BM_HypoElasticUpdate   jaumannUpdate + radialReturn with a velocity gradient

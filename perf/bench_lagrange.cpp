@@ -1,6 +1,7 @@
-// Google Benchmark drivers of the Lagrange-Remap step (STYLE §12): each kernel
-// of the Lagrangian step (DESIGN §3) and of the remap (DESIGN §5: densities,
-// gradients, swept faces, fluxes and update), the whole remap and whole steps,
+// Google Benchmark drivers of the Lagrange-Remap step (CONTRIBUTING.md
+// style 11): each kernel of the Lagrangian step (docs/method.md §A4-A5) and of the
+// remap (docs/method.md §A9: densities, gradients, swept faces, fluxes and
+// update), the whole remap and whole steps,
 // on the `sedov` blast at N^3 cells, advanced a few dozen steps first so the
 // shock exists (limiters and wall mirrors take their nontrivial branches).
 // Every iteration is timed with a Kokkos::Timer closed by Kokkos::fence()
@@ -267,7 +268,7 @@ void BM_FullStep(benchmark::State& state, int order) {
   setCellRate(state, "cell_steps_per_second");
 }
 
-// The remap alone (DESIGN §5: densities, gradients, swept regions, fluxes and
+// The remap alone (docs/method.md §A9: densities, gradients, swept regions, fluxes and
 // update) after an untimed Lagrangian step has moved the mesh off its target.
 void BM_Remap(benchmark::State& state) {
   Bench& b = *g_bench;

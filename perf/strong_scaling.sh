@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Strong scaling of the whole code (DESIGN §6): one fixed problem run as
+# Strong scaling of the whole code (docs/method.md §7.5): one fixed problem run as
 # 1 rank x 1 thread, 1 rank x 2 threads and 2 ranks x 1 thread (more with
 # SCALING_CONFIGS), each a few times; prints cell-steps per second (the
 # figure of merit of summary.json, time loop only), speed-up and parallel

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Weak scaling (DESIGN §6): the same number of cells per rank on 1, 2, 4 and
+# Weak scaling (docs/method.md §7.5): the same number of cells per rank on 1, 2, 4 and
 # 8 ranks (more or fewer with WEAK_RANKS), one thread each. The `sedov` blast
 # on an (a n) x (b n) x (c n) mesh for a 1 x 1 x 1, 2 x 1 x 1, 2 x 2 x 1,
 # 2 x 2 x 2 ... process grid (a x b x c = ranks; the octant is then cut into

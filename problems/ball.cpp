@@ -1,5 +1,5 @@
 // `ball` — an aluminium ball hits an aluminium plate at 1000 m/s
-// (Mie-Gruneisen, hypo-elastic perfectly plastic), PROBLEMS.md §6, in remap
+// (Mie-Gruneisen, hypo-elastic perfectly plastic), docs/verification.md §8.7, in remap
 // mode only: the ball (R = 0.5 mm, centred at (-4, 0) mm) and the plate
 // x in [-3.45, -2.45] mm, y in [-2, 2] mm (the paper gives no extent: a 50
 // micron gap) in near-vacuum gas (1e-5 kg/m^3, at rest, 1e-5 Pa) on the fixed
@@ -30,7 +30,7 @@ enum BallMaterial : int { kBall = 0, kPlate = 1, kGas = 2 };
 void declareBall(Config& config) {
   refuseLagrangeMode(config, "ball",
                      "the ball and the plate are two separate bodies that come into contact, "
-                     "which one Lagrangian mesh cannot hold, and PROBLEMS.md §6 has no "
+                     "which one Lagrangian mesh cannot hold, and the paper has no "
                      "Lagrangian reference");
   config.addReal("t_end", 2.5e-6, "s", "final time");
   declareHypoSolidKeys(config, "al", "Al");

@@ -1,5 +1,5 @@
 // `beam` — a Neo-Hookean beryllium plate set vibrating in its first free-free
-// bending mode, PROBLEMS.md §4: [-0.03,0.03] x [-0.005,0.005]^2, symmetry on
+// bending mode, docs/verification.md §8.5: [-0.03,0.03] x [-0.005,0.005]^2, symmetry on
 // the z faces, V = (0, Vy(x), 0) with the mode shape (the minus sign between
 // the brackets: the paper's '+' would start the far end at ~65 km/s).
 // Lagrange mode: the plate alone, 100 x 10 x 10, free elsewhere.

@@ -1,4 +1,4 @@
-// `pile` — pile driving of a hyper-elastic steel bar, PROBLEMS.md §3: a real
+// `pile` — pile driving of a hyper-elastic steel bar, docs/verification.md §8.4: a real
 // 3D mesh 100 x 3 x 3 of [0,10] x [-0.5,0.5]^2, rigid wall at x = 0, imposed
 // sigma_xx = -5e7 Pa at x = 10, free lateral faces. Linear elastic limit
 // (nu = 0, c = sqrt(E/rho0) = 5000 m/s, L/c = 2 ms): the wall stress is 0 until

@@ -1,5 +1,5 @@
 // `sedov` — point blast in an octant of space on a Cartesian mesh, symmetry
-// planes through the origin (PROBLEMS.md is silent; this is the classic
+// planes through the origin (not a case of the paper; this is the classic
 // verification problem of Lagrangian hydro codes). The blast energy E (of the
 // whole sphere) goes into the corner cell's octant share E/8. Checks: the
 // shock radius against the self-similar R(t) = (E t^2 / (alpha rho0))^(1/5)

@@ -1,5 +1,5 @@
 // `shell` — collapse of a thick beryllium shell (hypo-elastic perfectly
-// plastic, Mie-Gruneisen), PROBLEMS.md §5, inward with the incompressible
+// plastic, Mie-Gruneisen), docs/verification.md §8.6, inward with the incompressible
 // Howell-Ball profile V = -V0 (Ri / r) e_r (or the paper's text's V0 r / Ri).
 // Checks: the stopping radii (smallest inner radius reached, and the outer
 // radius then) against Howell & Ball's energy balance for the run's
@@ -26,7 +26,7 @@ namespace lagremap {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-// The paper's stopping radii, from its remap run (PROBLEMS.md §5).
+// The paper's stopping radii, from its remap run (docs/verification.md §8.6).
 constexpr double kPaperInnerRadius = 0.051, kPaperOuterRadius = 0.079;
 
 void declareShell(Config& config) {
@@ -61,7 +61,7 @@ void declareShell(Config& config) {
   config.addReal("check.radius_tolerance", 0.002, "m", "tolerance on the stopping radii");
 }
 
-// Initial velocity of the shell at x (PROBLEMS.md §5): inward, V0 Ri / r or V0 r / Ri.
+// Initial velocity of the shell at x (docs/verification.md §8.6): inward, V0 Ri / r or V0 r / Ri.
 Vec3 shellVelocity(const Vec3& x, double ri, double v0, bool howell_ball) {
   const double r = std::hypot(x.x, x.y);
   const double speed = howell_ball ? v0 * ri / r : v0 * r / ri;

@@ -1,6 +1,6 @@
 // `sod` — Sod's shock tube along x as a 3D bar one cell thick in y and z
-// (PROBLEMS.md, verification problems). Checks: L1 errors against the exact
-// Riemann solution, and transverse velocities at round-off (DESIGN §1).
+// (docs/verification.md §8.8). Checks: L1 errors against the exact
+// Riemann solution, and transverse velocities at round-off (docs/method.md §A1).
 #include <algorithm>
 #include <cmath>
 #include <fstream>

@@ -1,5 +1,5 @@
 // `taylor` — planar Taylor impact of an aluminium bar on a rigid wall
-// (hypo-elastic perfectly plastic, Mie-Gruneisen), PROBLEMS.md §2, as a slab
+// (hypo-elastic perfectly plastic, Mie-Gruneisen), docs/verification.md §8.3, as a slab
 // one cell thick in z. Lagrange mode: the bar [0,5] x [-0.5,0.5] alone, moving
 // at -150 m/s onto the wall x = 0, free elsewhere. Checks: final bar length
 // ~4.62 (paper, Lagrange) and the kinetic energy dissipated plastically.
@@ -17,7 +17,7 @@
 namespace lagremap {
 namespace {
 
-// The paper's final bar lengths (PROBLEMS.md §2), Lagrange and remap.
+// The paper's final bar lengths (docs/verification.md §8.3), Lagrange and remap.
 constexpr double kPaperLengthLagrange = 4.62, kPaperLengthRemap = 4.63;
 
 void declareTaylor(Config& config) {

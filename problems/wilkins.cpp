@@ -1,5 +1,5 @@
 // `wilkins` — 1D flyer-plate impact of aluminium on aluminium (hypo-elastic
-// perfectly plastic, Mie-Gruneisen), PROBLEMS.md §1, as a 3D bar one cell
+// perfectly plastic, Mie-Gruneisen), docs/verification.md §8.2, as a 3D bar one cell
 // thick. The flyer [-0.01, 0.005] moves at 800 m/s into aluminium at rest.
 // Lagrange mode meshes the solid only: the flyer and the target up to the
 // wall at x = 0.05, the flyer's back face free, at the paper's cell size
@@ -8,7 +8,7 @@
 // several GPa of tension.
 // Remap mode: the paper's fixed mesh [-0.04, 0.05] (200 cells), walls at both
 // ends, and for the same reason a light gas instead of aluminium in
-// [-0.04, -0.01] (departure from PROBLEMS.md's "all Al"): the flyer's back
+// [-0.04, -0.01] (departure from the paper's "all Al", docs/method.md §6.1): the flyer's back
 // face stays nearly free, and nothing enters the fixed mesh.
 // Checks (aluminium cells only), against the exact two-wave solution of the
 // run's own speed and material (src/exact_two_wave.hpp): the plastic state

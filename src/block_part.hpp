@@ -1,4 +1,4 @@
-// A rank's part of a generated nx x ny x nz block (DESIGN §6): the process
+// A rank's part of a generated nx x ny x nz block (docs/method.md §7.5): the process
 // grid, the box of cells the rank owns and the box it holds (the owned box
 // grown by kGhostLayers), and the owner of any cell or node, all computed
 // from (i, j, k) with no table over the block. The generators build only the

@@ -1,4 +1,4 @@
-// Checkpoint and restart (DESIGN §6): one HDF5 file holding the evolved state
+// Checkpoint and restart (docs/method.md §7.5): one HDF5 file holding the evolved state
 // of every cell and node by global id, and the time loop's counters, written
 // collectively by all ranks. The derived fields (geometry, pressures, sound
 // speeds) are recomputed on restart from the evolved ones by the same kernel,

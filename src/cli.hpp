@@ -1,4 +1,4 @@
-// The command line (STYLE §10): long options with help text, no positional
+// The command line (CONTRIBUTING.md style 9): long options with help text, no positional
 // arguments. Returns the process exit code:
 //   0 success, 1 a problem check failed, 2 bad input, 3 the run failed mid-way.
 #pragma once

@@ -1,4 +1,4 @@
-// MPI domain decomposition (DESIGN §6): each rank builds only its part of
+// MPI domain decomposition (docs/method.md §7.5): each rank builds only its part of
 // the generated block (BlockPart, src/block_part.hpp: its owned box of cells
 // plus kGhostLayers layers round it, and their nodes, numbered in increasing
 // global id), and the halo links the parts. After each nodal solve the ghost

@@ -1,4 +1,4 @@
-// Conservation audit (DESIGN §3): totals over cells and the impulse and work
+// Conservation audit (docs/method.md §A4, §2.9): totals over cells and the impulse and work
 // the boundaries put in, so drift = change of a total - what came in.
 #pragma once
 

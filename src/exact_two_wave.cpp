@@ -10,8 +10,8 @@
 namespace lagremap {
 namespace {
 
-// Pressure of the Mie-Gruneisen EOS with a linear U_s-u_p Hugoniot (DESIGN
-// §4), written here again so that the reference shares no code with the
+// Pressure of the Mie-Gruneisen EOS with a linear U_s-u_p Hugoniot
+// (docs/method.md §A7), written here again so that the reference shares no code with the
 // kernels: p = rho0 a0^2 f(eta) + rho0 Gamma0 e,
 // f = (eta - 1)(eta - Gamma0 (eta - 1)/2) / (eta - s (eta - 1))^2.
 double pressure(const ElasticPlasticSolid& m, double rho, double e) {

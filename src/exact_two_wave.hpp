@@ -1,5 +1,5 @@
 // Exact plane-wave solution of an elastic-plastic impact in uniaxial strain
-// (the `wilkins` flyer plate, PROBLEMS.md §1; docs/verification.md): each
+// (the `wilkins` flyer plate, docs/verification.md §8.2): each
 // solid, a Mie-Gruneisen EOS with a hypo-elastic perfectly plastic deviator
 // (von Mises), runs an elastic precursor up to the Hugoniot elastic limit and
 // behind it a plastic shock, both Rankine-Hugoniot jumps in the stress

@@ -1,6 +1,6 @@
 // Per-cell and per-node Views of any shape seen as (entity, component) rows,
 // so the halo exchange and the checkpoint move "every field of the state"
-// without naming each View's type (DESIGN §6).
+// without naming each View's type (docs/method.md §7.5).
 #pragma once
 
 #include <functional>
@@ -78,7 +78,7 @@ std::vector<FieldRef> cellStateFields(const State& state);
 // them through computeGeometry (dv/dt is kept for the time-step candidate).
 std::vector<FieldRef> evolvedCellFields(const State& state);
 
-// The halo's cell exchanges (DESIGN §6; docs/method.md §7.4): each moves the
+// The halo's cell exchanges (docs/method.md §7.4): each moves the
 // fields that kernels read in ghost cells, for owned results, before the
 // next exchange, and that the ghosts cannot compute themselves. A ghost
 // cell's geometry follows from its nodes, whose velocities its owners send

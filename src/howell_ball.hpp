@@ -1,5 +1,5 @@
-// Where a collapsing cylindrical shell stops (the `shell` problem, PROBLEMS.md
-// §5; Howell and Ball): an incompressible rigid-plastic shell in plane strain,
+// Where a collapsing cylindrical shell stops (the `shell` problem, docs/verification.md
+// §8.6; Howell and Ball): an incompressible rigid-plastic shell in plane strain,
 // von Mises yield stress Y, inner radius a and outer radius b with
 // b^2 - a^2 = B fixed. Its radial velocity is C / r (C = a da/dt), its
 // kinetic energy per unit length pi rho C^2 ln(b / a), and its plastic work

@@ -78,7 +78,7 @@ StepLimit LagrangeStep::stage(double dt_stage, bool last_stage) {
     std::swap(mesh_.x_n, state_.x_n_next);  // the mesh moves: no copy, the Views trade places
   }
   if (halo_) {
-    // ghost nodes: their owners' velocities (DESIGN §6), and the positions
+    // ghost nodes: their owners' velocities (docs/method.md §7.4), and the positions
     // these give, computed as their owners do (the external forces are read
     // on owned nodes only: the boundary work)
     auto scope = timers_.scope(Phase::Halo);

@@ -1,4 +1,4 @@
-// The Lagrangian step of DESIGN §3, as it reads in the paper:
+// The Lagrangian step of docs/method.md §A5, as it reads in the paper:
 //   geometry -> time step -> [predictor: corners, nodal solve, cell update (dt/2)]
 //   -> geometry at t^{n+1/2} -> [corrector: corners, nodal solve, cell update (dt)]
 //   -> geometry at t^{n+1} (the next step's time-step candidates).

@@ -1,4 +1,4 @@
-// Thin driver (STYLE §1): Kokkos takes its own flags, the library does the rest.
+// Thin driver (CONTRIBUTING.md style 1): Kokkos takes its own flags, the library does the rest.
 #include "cli.hpp"
 #include "floating_point.hpp"
 #include "kokkos_session.hpp"
@@ -6,7 +6,7 @@
 
 int main(int argc, char* argv[]) {
   lagremap::flushDenormalsToZero();  // before Kokkos starts its threads, which inherit it
-  lagremap::parallel::Session mpi(argc, argv);  // one rank per socket or GPU (DESIGN §6)
+  lagremap::parallel::Session mpi(argc, argv);  // one rank per socket or GPU (method.md §7.5)
   lagremap::KokkosSession kokkos(argc, argv);
   return lagremap::runCommandLine(argc, argv);
 }

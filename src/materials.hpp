@@ -1,4 +1,4 @@
-// Named material presets (PROBLEMS.md "Materials used"), host only. Kept out of
+// Named material presets (docs/verification.md §8.1), host only. Kept out of
 // the device headers because it uses std::string and exceptions. Header-only so
 // it needs no entry in the library's source list.
 #pragma once

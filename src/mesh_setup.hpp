@@ -1,4 +1,4 @@
-// Building the mesh of a generated block (DESIGN §6): connectivity and
+// Building the mesh of a generated block (docs/method.md §7.5): connectivity and
 // boundary data on the host, mirrored to the device once.
 #pragma once
 

@@ -1,4 +1,4 @@
-// The run's ranks (DESIGN §6): MPI_COMM_WORLD when MPI is initialised (the
+// The run's ranks (docs/method.md §7.5): MPI_COMM_WORLD when MPI is initialised (the
 // lagremap executable and the MPI tests), a single rank otherwise (unit tests
 // that build a mesh directly). Collective reductions of the time loop: dt and
 // its location, totals, probes; every rank returns the same value.

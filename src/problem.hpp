@@ -1,5 +1,5 @@
 // Built-in problems: a generator (mesh, materials, initial cells) and its
-// checks, registered by name (STYLE §1: the driver only looks them up).
+// checks, registered by name (CONTRIBUTING.md style 1: the driver only looks them up).
 #pragma once
 
 #include <functional>
@@ -35,7 +35,7 @@ struct Check {
   std::string note;  // what the number is and where the reference comes from
   // Remap mode: the reference the same check has in lagrange mode.
   std::optional<double> lagrange_reference;
-  // The paper's number for this quantity in this run's mode (PROBLEMS.md).
+  // The paper's number for this quantity in this run's mode (docs/verification.md §8).
   std::optional<double> paper;
   // Where the reference comes from ("exact two-wave solution", "Howell-Ball",
   // "paper, default parameters only", ...).
@@ -73,7 +73,7 @@ struct InitialCells {
   std::vector<int> mat;        // material index into ProblemSetup::materials
   // Optional mixed cells, n_cells x n_materials (cell-major): volume fraction,
   // material density and specific internal energy; when given they replace
-  // rho, e and mat (DESIGN §3: m^k = alpha^k rho^k v).
+  // rho, e and mat (docs/method.md §A3: m^k = alpha^k rho^k v).
   std::vector<double> alpha_k, rho_k, e_k;
 };
 
@@ -126,7 +126,7 @@ struct Problem {
   // in FinalFields::probe and written to probe.csv with this column name.
   double (*probe)(const Mesh& mesh, const State& state) = nullptr;
   const char* probe_name = nullptr;
-  // Snapshot times when the command line gives none (PROBLEMS.md), those up to t_end.
+  // Snapshot times when the command line gives none (docs/verification.md §8), those up to t_end.
   std::vector<double> default_output_times = {};
   // Why the mixed_cells check (src/mixed_cells.hpp) does not apply to this
   // problem, reported with it; nullptr: it applies in remap mode.

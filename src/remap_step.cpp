@@ -61,7 +61,7 @@ RemapBoundaryFlux RemapStep::apply() {
     crossed = remapUpdate(mesh_, state_, layout_, controls_, fields_, swept_);
     Kokkos::deep_copy(mesh_.x_n, x_target_);
   }
-  if (halo_) {  // ghost cells: their owners' remapped state (DESIGN §6, src/fields.hpp)
+  if (halo_) {  // ghost cells: their owners' remapped state (docs/method.md §7.4, src/fields.hpp)
     auto scope = timers_.scope(Phase::Halo);
     halo_->exchangeCells(remapped_fields_);
   }

@@ -1,4 +1,4 @@
-// The remap phase of DESIGN §5 as the time loop calls it: after each
+// The remap phase of docs/method.md §A9-A11 as the time loop calls it: after each
 // Lagrangian step, the state is swept back onto the initial mesh
 //   densities -> limited gradients (Lagrangian mesh) -> swept regions
 //   -> upwind fluxes, clean-up, kinetic-energy fix -> mesh back to x_initial

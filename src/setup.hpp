@@ -1,4 +1,4 @@
-// Set-up of a run (DESIGN §6): every key a run has, the numerics, the
+// Set-up of a run (docs/method.md §7.5): every key a run has, the numerics, the
 // problem's mesh and initial state on this rank, and the checks of bad input
 // that must come before anything is allocated.
 #pragma once

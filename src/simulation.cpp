@@ -46,7 +46,7 @@ Simulation::Simulation(const RunOptions& options, const Problem& problem)
   setup_seconds_.generate = phase.seconds() - setup_.sample_seconds;
   setup_seconds_.sample_materials = setup_.sample_seconds;
   phase.reset();
-  // decomposition (DESIGN §6): the generator built this rank's part of the
+  // decomposition (docs/method.md §7.5): the generator built this rank's part of the
   // block (its cells, their ghosts and nodes); the halo links it to the others
   if (parallel::size() > 1) halo_ = std::make_unique<Halo>(makeHalo(setup_.mesh));
   setup_seconds_.decompose = phase.seconds();
@@ -67,7 +67,7 @@ Simulation::Simulation(const RunOptions& options, const Problem& problem)
     lagrange_->remapFollowsEveryStep();
   }
 
-  // restart (DESIGN §6): the evolved state and the loop's counters of a
+  // restart (docs/method.md §7.5): the evolved state and the loop's counters of a
   // checkpoint; the derived fields follow from the same geometry kernel.
   loop_.problem = options.problem;
   loop_.mode = options.mode;
@@ -163,13 +163,13 @@ std::string Simulation::stopReason(const TimeStepChoice& choice) const {
 
 void Simulation::advance(const TimeStepChoice& choice) {
   const long next = loop_.step + 1;
-  // Lagrangian phase: predictor and corrector (DESIGN §3), with the next
+  // Lagrangian phase: predictor and corrector (docs/method.md §A5), with the next
   // step's time-step candidates
   limit_ = lagrange_->advance(choice.dt, next);
   if (limit_.val < 0.0) throw RunFailure(describeInvalidCell(limit_, next, "end of step"));
   RemapBoundaryFlux crossed;
   if (remap_) {
-    // remap onto the initial mesh (DESIGN §5): densities, gradients, swept
+    // remap onto the initial mesh (docs/method.md §A9): densities, gradients, swept
     // regions, fluxes, energy fix; then the time step of the remapped state
     crossed = remap_->apply();
     limit_ = lagrange_->computeGeometry(remap_->targetGeometry());

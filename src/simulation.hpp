@@ -1,4 +1,4 @@
-// The time loop of the paper's Fig. 2 (DESIGN §3, §5): each step is the
+// The time loop of the paper's Fig. 2 (docs/method.md §A5, §A9): each step is the
 // Lagrangian phase (predictor, corrector), then in remap mode the remap onto
 // the initial mesh (densities, gradients, swept regions, fluxes, energy fix),
 // then the diagnostics (conservation audit, probe). Outputs (history,
@@ -87,7 +87,7 @@ class Simulation {
   double driftEnergy() const;
 
  private:
-  // dt = min(stable dt, growth * dt_prev, next output time, t_end) (DESIGN §3).
+  // dt = min(stable dt, growth * dt_prev, next output time, t_end) (docs/method.md §A6).
   TimeStepChoice chooseTimeStep() const;
   // Why the loop cannot take this step ("" if it can): step limit, dt collapse.
   std::string stopReason(const TimeStepChoice& choice) const;

@@ -1,8 +1,8 @@
-// Phase timers and profiling regions (STYLE §8-9): each phase of the step is a
-// Kokkos Tools region `lagremap::<phase>` and accumulates wall time. Timing a
-// phase fences the execution space at its start and its end, so the time is
-// the phase's own even on asynchronous backends (work launched before it is
-// not counted, its own kernels are).
+// Phase timers and profiling regions (CONTRIBUTING.md style 7-8): each
+// phase of the step is a Kokkos Tools region `lagremap::<phase>` and
+// accumulates wall time. Timing a phase fences the execution space at its
+// start and its end, so the time is the phase's own even on asynchronous
+// backends (work launched before it is not counted, its own kernels are).
 #pragma once
 
 #include <array>

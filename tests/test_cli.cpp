@@ -297,7 +297,7 @@ TEST(CommandLine, SnapshotsAtRequestedTimes) {
 }
 
 // A problem's own snapshot times when the command line gives none: `ball`
-// writes PROBLEMS.md §6's every 0.5 us (those up to the run's t_end).
+// writes verification.md §8.7's every 0.5 us (those up to the run's t_end).
 TEST(CommandLine, ProblemsOwnSnapshotTimes) {
   const std::string dir = testing::scratchDir("cli_default_snapshots");
   const auto result = runLagremap(

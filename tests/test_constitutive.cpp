@@ -1,8 +1,8 @@
-// Constitutive models of DESIGN §4: equations of state (against finite
+// Constitutive models of docs/method.md §A7: equations of state (against finite
 // differences and the Hugoniot form of Mie-Grüneisen), the hypo-elastic Jaumann
 // update and radial return (objectivity, exact shear solution, yield surface),
 // the Neo-Hookean stress (closed forms for stretch and shear, rigid rotations)
-// and the material presets of PROBLEMS.md. The device functions are inline, so
+// and the material presets of docs/verification.md §8.1. The device functions are inline, so
 // the tests call them directly on the host.
 #include <gtest/gtest.h>
 
@@ -138,7 +138,7 @@ TEST(Eos, MieGruneisenSoundSpeedIsTheIsentropicDerivative) {
 //   p_H(V) = rho0 a0^2 x / (1 - s x)^2, x = 1 - V/V0,  e_H = p_H (V0 - V)/2,
 // and a Grüneisen offset with Gamma/V = Gamma0/V0 constant:
 //   p = p_H + (Gamma0/V0) (e - e_H).
-// (Substituting x = (eta-1)/eta gives DESIGN's f(eta); the test only uses V.)
+// (Substituting x = (eta-1)/eta gives method.md §A7's f(eta); the test only uses V.)
 double mieGruneisenVolumeForm(const MaterialParams& mat, double V, double e) {
   const double V0 = 1.0 / mat.rho0;
   const double x = 1.0 - V / V0;
@@ -359,7 +359,7 @@ TEST(NeoHookean, UniaxialStretchMatchesTheClosedForm) {
     EXPECT_EQ(sigma.yz, 0.0);
     EXPECT_EQ(sigma.xz, 0.0);
     if (lambda > 1.0) {
-      EXPECT_GT(sigma.xx, 0.0) << "tension positive (DESIGN §1)";
+      EXPECT_GT(sigma.xx, 0.0) << "tension positive (docs/method.md §A1)";
     } else if (lambda < 1.0) {
       EXPECT_LT(sigma.xx, 0.0);
     }

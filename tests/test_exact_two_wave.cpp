@@ -11,7 +11,7 @@
 namespace lagremap {
 namespace {
 
-// PROBLEMS.md's aluminium with p0 = 1e5 Pa (e0 = p0 / (rho0 Gamma0)).
+// The aluminium of docs/verification.md §8.1 with p0 = 1e5 Pa (e0 = p0 / (rho0 Gamma0)).
 ElasticPlasticSolid aluminium() {
   return {2785.0, 5328.0, 2.0, 1.338, 27.6e9, 3.0e8, 1e5 / (2785.0 * 2.0)};
 }

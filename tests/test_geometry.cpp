@@ -1,4 +1,4 @@
-// Geometry of DESIGN §2: corner vectors are the exact derivative of the cell
+// Geometry of docs/method.md §A2: corner vectors are the exact derivative of the cell
 // volume (GCL) on distorted hexes with non-planar faces, they sum to zero, and
 // volume and centroid are exact on known shapes.
 #include <gtest/gtest.h>

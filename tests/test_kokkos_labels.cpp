@@ -1,6 +1,6 @@
 // Every kernel launch of a step is labelled lagremap::<phase>::<kernel>, every
 // View lagremap::<area>::<name>, and each phase is one profiling region
-// (STYLE §8), checked through Kokkos Tools callbacks installed in-process.
+// (CONTRIBUTING.md style 7), checked through Kokkos Tools callbacks installed in-process.
 #include <gtest/gtest.h>
 
 #include <mutex>

@@ -1,4 +1,4 @@
-// Physics of the Lagrangian phase (DESIGN §3): free-stream preservation on a
+// Physics of the Lagrangian phase (docs/method.md §A4-A5): free-stream preservation on a
 // distorted mesh, conservation to round-off with walls and free surfaces, 1D
 // problems stay 1D, Sod against the exact solution at two resolutions for both
 // orders, the Sedov blast radius and symmetry, and thread-count independence.
@@ -48,7 +48,7 @@ TEST(Lagrange, FreeStreamIsPreservedOnADistortedMesh) {
                               p0 / ((gamma - 1) * rho0), velocity);
     const Index n_cells = setup.mesh.n_cells;
     // A true copy: on host backends a mirror view would alias x_n, whose buffer
-    // the step reuses (DESIGN §6: Mesh::x_n and State::x_n_next trade places).
+    // the step reuses (docs/method.md §2.8: Mesh::x_n and State::x_n_next trade places).
     auto x_start = Kokkos::create_mirror(setup.mesh.x_n);
     Kokkos::deep_copy(x_start, setup.mesh.x_n);
 

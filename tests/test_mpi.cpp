@@ -1,4 +1,4 @@
-// MPI tests (DESIGN §6), run by ctest under mpiexec with 2, 3 and 4 ranks:
+// MPI tests (docs/method.md §7.5), run by ctest under mpiexec with 2, 3 and 4 ranks:
 // the decomposition covers every cell once, the halo brings each ghost its
 // owner's values, decomposed runs reproduce the single-rank run, snapshots
 // do not depend on the rank count, and restarts continue bit for bit.

@@ -1,5 +1,5 @@
 // Kernel-level properties of the reconstruction and the nodal solver
-// (DESIGN §3): least squares is exact on linear fields, the limited
+// (docs/method.md §A4-A5): least squares is exact on linear fields, the limited
 // reconstruction stays within its neighbours' bounds, the vector and tensor
 // limiter is frame-independent and keeps a one-cell plateau's jump at the
 // node, and constrained node
@@ -96,7 +96,7 @@ TEST(Reconstruction, LimitedVertexValuesStayWithinNeighbourBounds) {
         EXPECT_GE(value, bounds.lo - 1e-14);
         per_vertex_min = std::min(per_vertex_min, vertexLimiter(delta, center, bounds, beta));
       }
-      // The two-division form is the min over vertices of DESIGN §5's formula.
+      // The two-division form is the min over vertices of docs/method.md §A10's formula.
       EXPECT_NEAR(phi, per_vertex_min, 1e-15);
     }
   }

@@ -1,4 +1,4 @@
-// Remap phase (DESIGN §5): a whole remap step from a randomly moved
+// Remap phase (docs/method.md §A9-A11): a whole remap step from a randomly moved
 // "Lagrangian" mesh back onto the initial one, on two-material states.
 #include <gtest/gtest.h>
 
@@ -438,7 +438,7 @@ TEST(Remap, WilkinsInRemapModeTakesInNoMassAndMatchesItsChecks) {
 namespace lagremap {
 namespace {
 
-// DESIGN §3 energy split in one mixed cell under a uniform compression (the
+// docs/method.md §A8 energy split in one mixed cell under a uniform compression (the
 // cell's energy change is exactly the compression work): each material gets
 // its own -p^k dv^k, not a share of the total, with dv^k its part of the
 // volume change, in proportion to w^k = alpha^k / (rho^k a_k^2) (docs/method.md §4.2:

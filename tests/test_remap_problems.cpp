@@ -1,4 +1,4 @@
-// The multi-material set-ups of PROBLEMS.md §4-6 in remap mode (the beryllium
+// The multi-material set-ups of docs/verification.md §8.5-8.7 in remap mode (the beryllium
 // shell and plate in gas, the aluminium ball and plate in near-vacuum), each
 // coarse and short: every total conserved to round-off (each material's mass
 // too), volume fractions inside [0, 1] and summing to 1, a finite state, and

@@ -1,5 +1,5 @@
-// Solids in the Lagrangian scheme (DESIGN §3-4), end to end: the Neo-Hookean
-// strain energy whose derivatives are DESIGN §4's stress, a reversible elastic
+// Solids in the Lagrangian scheme (docs/method.md §A4-A7), end to end: the Neo-Hookean
+// strain energy whose derivatives are docs/method.md §A7's stress, a reversible elastic
 // run whose internal energy is that stored energy, the elastic wave of a
 // hypo-elastic bar in uniaxial strain against the Mie-Gruneisen tangent, and
 // mass, momentum and total energy to round-off in short runs of the solid
@@ -27,7 +27,7 @@ constexpr double kPi = 3.14159265358979323846;
 // ---------------------------------------------------------------- strain energy
 
 // Neo-Hookean strain energy per unit reference volume, in the variables the
-// scheme carries (B and J = rho0/rho, DESIGN §4):
+// scheme carries (B and J = rho0/rho, docs/method.md §A7):
 //   W = mu/2 (tr Bbar - 3) + kappa/4 [(J-1)^2 + (ln J)^2],  Bbar = det(B)^{-1/3} B.
 // Its volumetric part U(J) has -dU/dJ = -kappa/2 [(J-1) + ln(J)/J] = p, and the
 // isochoric part gives the Kirchhoff deviator mu dev(Bbar), i.e. the Cauchy
@@ -86,7 +86,7 @@ struct Audit {
 };
 
 // Drift of the total energy with the boundary work subtracted, relative to
-// the largest energy present (as runProblem's audit, DESIGN §3).
+// the largest energy present (as runProblem's audit, docs/method.md §2.9).
 double energyDrift(const Audit& audit, const Totals& now) {
   const double scale =
       std::max({std::fabs(audit.initial.total()), std::fabs(now.total()), std::fabs(audit.work)});
@@ -162,7 +162,7 @@ StressSnapshot stressSnapshot(const Mesh& mesh, const State& state) {
 }
 
 // Work of the cell stresses over one step, sum_c sigma_c : sum_p dx_p (x) A_cp
-// (= dt v sigma : grad V, DESIGN §3), with the stress averaged over the step
+// (= dt v sigma : grad V, docs/method.md §A8), with the stress averaged over the step
 // and A_cp at the mid-step positions: second order in dt, like the scheme.
 double stressWork(const CellNodesView::HostMirror& cell_nodes, const StressSnapshot& start,
                   const StressSnapshot& end) {
@@ -182,15 +182,15 @@ double stressWork(const CellNodesView::HostMirror& cell_nodes, const StressSnaps
   return work;
 }
 
-// A Be-hyper cube (DESIGN §4, Neo-Hookean) set in smooth motion with strains
+// A Be-hyper cube (docs/method.md §A7, Neo-Hookean) set in smooth motion with strains
 // of ~0.5% (volumetric and shear: every velocity component varies along two
 // axes), walls on x, free surfaces on y, symmetry on z, 400 steps at the
 // stable dt (about 7 periods of the slowest mode). Elasticity is reversible:
-//  - total energy is conserved to round-off (the audit of DESIGN §3);
+//  - total energy is conserved to round-off (the audit of docs/method.md §2.9);
 //  - the strain energy sum_c v0 W(B, J) equals the work the cell stresses did
-//    along the discrete motion, so B, J and the stress of DESIGN §4 agree
+//    along the discrete motion, so B, J and the stress of docs/method.md §A7 agree
 //    (measured 6.1e-6 of the initial kinetic energy, an error second order in
-//    dt; the common volumetric energy kappa/2 (J-1)^2 in place of DESIGN's
+//    dt; the common volumetric energy kappa/2 (J-1)^2 in place of method.md §A7's
 //    would miss it by 5.8e-5, so the check sees W's form);
 //  - what the internal energy holds beyond it, m (e - e0) - v0 W summed over
 //    the cells, is the heat of the nodal solver's impedance terms, which never
@@ -300,7 +300,7 @@ double standingWaveKineticLoss(int n) {
 }
 
 // A smooth elastic wave loses its energy at second order in the cell size:
-// the whole Cauchy stress is reconstructed (DESIGN §3), not only V. With the
+// the whole Cauchy stress is reconstructed (docs/method.md §A5, §2.2), not only V. With the
 // stress held constant over the cell the loss fell at first order (0.43,
 // 0.23, 0.12 at 16, 32, 64 cells).
 TEST(ElasticWave, StandingWaveLosesKineticEnergyAtSecondOrder) {
@@ -318,7 +318,7 @@ TEST(ElasticWave, StandingWaveLosesKineticEnergyAtSecondOrder) {
 
 // ---------------------------------------------------------------- hypo-elastic
 
-// An aluminium bar (Mie-Gruneisen + Wilkins hypo-elasticity, DESIGN §4) in
+// An aluminium bar (Mie-Gruneisen + Wilkins hypo-elasticity, docs/method.md §A7) in
 // uniaxial strain (symmetry on y and z) moving at v0 = 6 m/s onto a wall at
 // x = 0: an elastic wave (strain ~ 1e-3, a sixth of the yield strain Y0/(2 mu))
 // runs back into the bar and leaves it at rest and compressed. Linear
@@ -425,8 +425,8 @@ TEST(SolidProblems, CollapsingShellStaysRoundOnItsPolarMesh) {
 // to the in-plane cell size, so the time step is not set by it), in the
 // variants the quick tests do not run yet (test_lagrange.cpp runs wilkins and pile at order 2 with
 // the CRS gather): mass exactly, momentum and total energy to round-off once the wall impulse and
-// the traction work are accounted for (DESIGN §3), through plastic flow (wilkins, taylor, shell),
-// traction loading (pile) and free vibration (beam).
+// the traction work are accounted for (docs/method.md §2.9), through plastic flow (wilkins,
+// taylor, shell), traction loading (pile) and free vibration (beam).
 TEST(SolidProblems, ConserveMassMomentumAndEnergyInShortCoarseRuns) {
   struct Case {
     const char* problem;

@@ -1,4 +1,4 @@
-// Swept-face geometry of the remap (DESIGN §5): the swept regions of a cell
+// Swept-face geometry of the remap (docs/method.md §A9): the swept regions of a cell
 // telescope to the change of its volume and first moment on a distorted mesh,
 // both sides of a face hold the same numbers, their total is conserved, and
 // single regions are exact on known shapes and against a high-order quadrature.
@@ -76,7 +76,7 @@ void cellNodes(const NodeView& x_n, const CellNodeView& cell_nodes, Index c, Vec
   for (int p = 0; p < 8; ++p) x[p] = loadVec3(x_n, cell_nodes(c, p));
 }
 
-// DESIGN §5: V_new = V_lag + sum_t dV_t and (V x_c)_new = (V x_c)_lag + sum_t M_t
+// docs/method.md §A9: V_new = V_lag + sum_t dV_t and (V x_c)_new = (V x_c)_lag + sum_t M_t
 // for every cell, with the face points of both meshes and non-planar faces
 // everywhere; boundary faces included (sliding or free).
 // computeSweptFaces skips a boundary face that stays in one axis plane (a wall
@@ -160,7 +160,7 @@ TEST(SweptFace, CellRegionsTelescopeToTheVolumeAndMomentChange) {
 }
 
 // The gained and given regions of a face are the sums of its triangles by the
-// sign of their swept volume (DESIGN §5's upwind choice), a tie (dV_t = 0) on
+// sign of their swept volume (docs/method.md §A9's upwind choice), a tie (dV_t = 0) on
 // the side of the lower cell id: recomputed here on the host from the face's
 // nodes, triangle by triangle, with the same additions in the same order.
 TEST(SweptFace, FaceSidesSumTheTrianglesByUpwindCell) {

@@ -1,7 +1,7 @@
 // Small HDF5 toolkit shared by the snapshot writer and the checkpoint: owning
 // handles, errors as exceptions, files opened for every rank (MPI-IO when the
 // run has several), and datasets of global rows written or read by each rank
-// for its own, not necessarily contiguous, rows (DESIGN §6).
+// for its own, not necessarily contiguous, rows (method.md §7.5).
 #pragma once
 
 #include <hdf5.h>

@@ -48,7 +48,7 @@ struct CellField {
 
 // Host view of the mesh. node_xyz: 3 * n_nodes (x, y, z per node);
 // cell_nodes: 8 * n_cells zero-based node indices in VTK_HEXAHEDRON order.
-// A decomposed run (DESIGN §6) passes each rank's owned nodes and cells with
+// A decomposed run (method.md §7.5) passes each rank's owned nodes and cells with
 // their global rows (increasing) and the global counts; cell_nodes then hold
 // global node numbers. Every rank calls write() (collective MPI-IO); the file
 // is the one a single rank would write.
