@@ -29,10 +29,10 @@ ROOT = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else
 
 # Built from pieces so that this file does not cite them itself.
 FORBIDDEN = [
-    ("design notes", re.compile(r"\b" + "DES" + r"IGN\b")),
-    ("problem notes", re.compile("PROB" + r"LEMS\.md")),
-    ("style notes", re.compile("STY" + r"LE(?: §|\.md)")),
-    ("outside folder", re.compile(r"\.\./" + "sha" + "red")),
+    ("the design notes", re.compile(r"\b" + "DES" + r"IGN\b")),
+    ("the problem notes", re.compile("PROB" + r"LEMS\.md")),
+    ("the style notes", re.compile("STY" + r"LE(?: §|\.md)")),
+    ("the folder beside the repository", re.compile(r"\.\./" + "sha" + "red")),
 ]
 LINK = re.compile(r"!?\[([^\]\n]*)\]\(\s*<?([^)\s>]+)>?(?:\s+\"[^\"]*\")?\s*\)")
 DOCS_PATH = re.compile(r"(?<![\w./-])(docs/[\w./-]*?\.md)\b")
@@ -158,7 +158,7 @@ def main():
             where = f"{rel}:{lineno}"
             for what, pattern in FORBIDDEN:
                 if pattern.search(line):
-                    problems.append(f"{where}: cites the {what} that are not in the repository: "
+                    problems.append(f"{where}: cites {what}, which the repository does not hold: "
                                     f"{line.strip()[:120]}")
             for m in DOCS_PATH.finditer(line):
                 if not exists(m.group(1)):
