@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "../data/boundary.hpp"
+#include "data/boundary.hpp"
 
 namespace lagremap {
 

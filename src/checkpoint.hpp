@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
-#include "../data/mesh.hpp"
-#include "../data/state.hpp"
+#include "data/mesh.hpp"
+#include "data/state.hpp"
 #include "diagnostics.hpp"
 
 namespace lagremap {

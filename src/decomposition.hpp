@@ -10,8 +10,8 @@
 #include <array>
 #include <vector>
 
-#include "../data/mesh.hpp"
 #include "block_part.hpp"
+#include "data/mesh.hpp"
 #include "fields.hpp"
 
 namespace lagremap {

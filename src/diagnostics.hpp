@@ -2,9 +2,9 @@
 // the boundaries put in, so drift = change of a total - what came in.
 #pragma once
 
-#include "../data/mesh.hpp"
-#include "../data/state.hpp"
-#include "../kernels/sum_array.hpp"
+#include "data/mesh.hpp"
+#include "data/state.hpp"
+#include "kernels/sum_array.hpp"
 
 namespace lagremap {
 

@@ -8,7 +8,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "../data/state.hpp"
+#include "data/state.hpp"
 
 namespace lagremap {
 

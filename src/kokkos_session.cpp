@@ -2,7 +2,7 @@
 
 #include <cstdlib>
 
-#include "../data/types.hpp"
+#include "data/types.hpp"
 
 namespace lagremap {
 

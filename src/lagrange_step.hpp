@@ -8,11 +8,11 @@
 #include <stdexcept>
 #include <string>
 
-#include "../data/mesh.hpp"
-#include "../data/state.hpp"
-#include "../kernels/geometry.hpp"
-#include "../kernels/nodal_solver.hpp"
+#include "data/mesh.hpp"
+#include "data/state.hpp"
 #include "decomposition.hpp"
+#include "kernels/geometry.hpp"
+#include "kernels/nodal_solver.hpp"
 #include "timers.hpp"
 
 namespace lagremap {

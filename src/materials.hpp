@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "../kernels/eos.hpp"
+#include "kernels/eos.hpp"
 
 namespace lagremap {
 

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "../kernels/hex.hpp"
+#include "kernels/hex.hpp"
 
 namespace lagremap {
 namespace {

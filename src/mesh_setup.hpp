@@ -5,8 +5,8 @@
 #include <functional>
 #include <optional>
 
-#include "../data/mesh.hpp"
 #include "block_part.hpp"
+#include "data/mesh.hpp"
 
 namespace lagremap {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "../data/material_params.hpp"
+#include "data/material_params.hpp"
 #include "problem.hpp"
 
 namespace lagremap {

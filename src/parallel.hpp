@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "../kernels/time_step.hpp"
+#include "kernels/time_step.hpp"
 
 namespace lagremap::parallel {
 

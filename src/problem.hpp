@@ -8,8 +8,8 @@
 #include <utility>
 #include <vector>
 
-#include "../data/mesh.hpp"
-#include "../data/state.hpp"
+#include "data/mesh.hpp"
+#include "data/state.hpp"
 #include "input/config.hpp"
 #include "mesh_setup.hpp"
 #include "parallel.hpp"

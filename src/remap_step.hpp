@@ -5,11 +5,11 @@
 // and the caller recomputes the geometry (the next step's time step).
 #pragma once
 
-#include "../data/mesh.hpp"
-#include "../data/state.hpp"
-#include "../kernels/geometry.hpp"
-#include "../kernels/remap.hpp"
+#include "data/mesh.hpp"
+#include "data/state.hpp"
 #include "decomposition.hpp"
+#include "kernels/geometry.hpp"
+#include "kernels/remap.hpp"
 #include "timers.hpp"
 
 namespace lagremap {

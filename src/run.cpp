@@ -6,8 +6,8 @@
 #include <iomanip>
 #include <memory>
 
-#include "../kernels/hex.hpp"
 #include "exact_sum.hpp"
+#include "kernels/hex.hpp"
 #include "outputs.hpp"
 #include "parallel.hpp"
 #include "simulation.hpp"

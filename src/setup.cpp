@@ -7,7 +7,7 @@
 
 #include <unistd.h>
 
-#include "../kernels/geometry.hpp"
+#include "kernels/geometry.hpp"
 
 namespace lagremap {
 

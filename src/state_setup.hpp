@@ -2,7 +2,7 @@
 // before the time loop.
 #pragma once
 
-#include "../data/state.hpp"
+#include "data/state.hpp"
 
 namespace lagremap {
 

@@ -2,8 +2,8 @@
 
 #include <fstream>
 
-#include "../kernels/hex.hpp"
 #include "json.hpp"
+#include "kernels/hex.hpp"
 #include "kokkos_session.hpp"
 #include "parallel.hpp"
 

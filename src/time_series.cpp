@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "../data/math.hpp"
+#include "data/math.hpp"
 
 namespace lagremap {
 
