@@ -196,7 +196,8 @@ int runAndReport(const RunOptions& options) {
 int runCommandLine(int argc, char* argv[]) {
   CLI::App app{
       "lagremap: 3D cell-centred Lagrangian (and Lagrange-Remap) multi-material dynamics.\n"
-      "Kokkos options (--kokkos-threads=N or --kokkos-num-threads=N, ...) are accepted too.\n"
+      "Kokkos options (--kokkos-threads=N or --kokkos-num-threads=N, ...) are accepted too;\n"
+      "--kokkos-help lists them.\n"
       "Threads: OMP_NUM_THREADS (or --kokkos-threads). Thread binding is OpenMP's default\n"
       "unless OMP_PROC_BIND is set; OMP_PROC_BIND=spread OMP_PLACES=threads is fastest\n"
       "(scripts/run.sh sets them). Kokkos' advice about it is not printed.",

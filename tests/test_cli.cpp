@@ -128,9 +128,19 @@ TEST(CommandLine, ListHelpAndPrintConfig) {
   EXPECT_EQ(list.exit_code, 0);
   EXPECT_NE(list.output.find("sod"), std::string::npos);
   EXPECT_NE(list.output.find("sedov"), std::string::npos);
-  const auto help = runLagremap("--help");
-  EXPECT_EQ(help.exit_code, 0);
-  EXPECT_NE(help.output.find("--print-config"), std::string::npos);
+  // --help (and -h) is lagremap's usage from its first line, without Kokkos'
+  // own help, which --kokkos-help prints alone.
+  for (const char* flag : {"--help", "-h", "--problem sod --help"}) {
+    const auto help = runLagremap(flag);
+    EXPECT_EQ(help.exit_code, 0) << flag;
+    EXPECT_EQ(help.output.rfind("lagremap: 3D cell-centred", 0), 0u) << flag << "\n" << help.output;
+    EXPECT_NE(help.output.find("--print-config"), std::string::npos) << flag;
+    EXPECT_EQ(help.output.find("Kokkos command line arguments"), std::string::npos) << flag;
+  }
+  const auto kokkos_help = runLagremap("--kokkos-help");
+  EXPECT_EQ(kokkos_help.exit_code, 0) << kokkos_help.output;
+  EXPECT_NE(kokkos_help.output.find("--kokkos-help"), std::string::npos) << kokkos_help.output;
+  EXPECT_EQ(kokkos_help.output.find("--print-config"), std::string::npos) << kokkos_help.output;
   const auto config = runLagremap(
       "--problem sod --scale 2 --set left.p=3 --t-end 2.5e-7 --cfl 0.25 --print-config");
   EXPECT_EQ(config.exit_code, 0);
