@@ -50,6 +50,10 @@ TEST(CommandLine, MalformedInputGivesExitCodeTwoAndOneLine) {
       {"--problem sod --set mesh.nx=0", "mesh"},
       {"--problem sod --set numerics.cfl=2", "numerics.cfl"},
       {"--problem sod --set numerics.dt_drop_fraction=1.5", "numerics.dt_drop_fraction"},
+      // A floor above the first step: the run would stop at once (time step
+      // collapse), whether the floor is too high or t_end beyond what it resolves.
+      {"--problem sod --set numerics.dt_min_fraction=0.5", "numerics.dt_min_fraction x t_end"},
+      {"--problem sod --t-end 1e300", "t_end can be at most"},
       {"--problem sod --set =3", "key=value"},
       {"--problem sod --set bc.xmin=sticky", "bc.xmin"},
       {"--problem sod --set left.rho=-1", "densities"},
@@ -306,6 +310,34 @@ TEST(CommandLine, SnapshotsAtRequestedTimes) {
   std::filesystem::remove_all(dir);
 }
 
+// Snapshot times in any order, a time given twice, or closer to another (or
+// to the start) than the run's smallest step (numerics.dt_min_fraction x
+// t_end): one snapshot each, in time order. Given twice, a time once asked
+// for a zero step and stopped the run (sod: "time step collapse, dt = 0";
+// taylor in remap mode: a NaN energy).
+TEST(CommandLine, RepeatedAndUnsortedOutputTimesAreOneSnapshotEach) {
+  const std::string dir = testing::scratchDir("cli_repeated_times");
+  const auto sod = runLagremap(
+      "--problem sod --scale 0.25 --quiet --output-times "
+      "0.1,0.05,0.1,1e-20,0.1000000000000001 --output " +
+      dir + "/sod");
+  ASSERT_EQ(sod.exit_code, 0) << sod.output;
+  const std::string series = testing::readFile(dir + "/sod/fields.xmf");
+  std::string times;
+  for (std::size_t at = series.find("Value=\""); at != std::string::npos;
+       at = series.find("Value=\"", at + 1)) {
+    times += series.substr(at + 7, series.find('"', at + 7) - at - 7) + " ";
+  }
+  EXPECT_EQ(times, "0 0.05 0.1 0.2 ") << series;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/sod/fields_00004.h5"));
+  const auto taylor = runLagremap(
+      "--problem taylor --mode remap --scale 0.25 --t-end 0.0005 --output-times 0.0001,0.0001 "
+      "--quiet --output " +
+      dir + "/taylor");
+  EXPECT_EQ(taylor.exit_code, 0) << taylor.output;
+  std::filesystem::remove_all(dir);
+}
+
 // A problem's own snapshot times when the command line gives none: `ball`
 // writes PROBLEMS.md §6's every 0.5 us (those up to the run's t_end).
 TEST(CommandLine, ProblemsOwnSnapshotTimes) {
@@ -338,8 +370,12 @@ TEST(CommandLine, FailureMidRunGivesExitCodeThreeAndWritesLastGoodState) {
   };
   const std::vector<Failure> failures = {
       {"--problem sod --set numerics.max_steps=5", "max_steps"},
-      // A dt floor above the stable dt: the step collapses below it at once.
-      {"--problem sod --set numerics.dt_min_fraction=0.5", "time step collapse"},
+      // A dt floor between sedov's first two steps: the first, the whole
+      // stable dt (dt_initial_factor 1, 0.0106 s), passes; the second,
+      // limited by the volume change (0.00193 s), collapses below 0.005 s.
+      {"--problem sedov --scale 0.3 --set numerics.dt_initial_factor=1 "
+       "--set numerics.dt_min_fraction=0.005",
+       "step 2: time step collapse, dt = 0.00193"},
       // Sedov's stable dt falls to 0.75 of its largest in the first steps
       // (the blast leaves its cell): a 0.9 drop limit stops it, with the
       // fraction named.
