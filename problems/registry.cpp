@@ -44,7 +44,7 @@ const Problem& findProblem(const std::string& name) {
     if (name == problem.name) return problem;
     known += (known.empty() ? "" : ", ") + std::string(problem.name);
   }
-  throw ConfigError("unknown problem '" + name + "' (known: " + known + ")");
+  throw ConfigError("unknown problem '" + abbreviated(name) + "' (known: " + known + ")");
 }
 
 bool Check::pass() const {
@@ -113,8 +113,10 @@ MaterialParams readHypoSolid(const Config& config, const std::string& prefix,
   m.s = config.real(prefix + ".s");
   m.mu = config.real(prefix + ".mu");
   m.yield_stress = config.real(prefix + ".yield_stress");
-  if (!(m.rho0 > 0 && m.a0 > 0 && m.s >= 0 && m.mu >= 0 && m.yield_stress >= 0)) {
-    throw ConfigError(prefix + ": rho0 and a0 must be > 0; s, mu and yield_stress >= 0");
+  // (Gamma0 > 0, not >= 0: the problems set a solid's initial energy from its
+  // pressure at rho0, e0 = p0 / (rho0 Gamma0))
+  if (!(m.rho0 > 0 && m.a0 > 0 && m.Gamma0 > 0 && m.s >= 0 && m.mu >= 0 && m.yield_stress >= 0)) {
+    throw ConfigError(prefix + ": rho0, a0 and Gamma0 must be > 0; s, mu and yield_stress >= 0");
   }
   return m;
 }

@@ -14,7 +14,7 @@ BoundaryKind parseBoundaryKind(const std::string& key, const std::string& text) 
   if (text == "wall" || text == "symmetry") return BoundaryKind::Wall;
   if (text == "fixed") return BoundaryKind::Fixed;
   if (text == "traction") return BoundaryKind::Traction;
-  throw ConfigError("bad boundary condition '" + text + "' for key '" + key +
+  throw ConfigError("bad boundary condition '" + abbreviated(text) + "' for key '" + key +
                     "': expected free|wall|symmetry|fixed|traction");
 }
 

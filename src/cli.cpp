@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <functional>
 #include <iostream>
+#include <sstream>
 
 #include "kokkos_session.hpp"
 #include "parallel.hpp"
@@ -33,9 +34,9 @@ CLI::Validator numberIn(const std::string& rule, const std::function<bool(double
         char* end = nullptr;
         const double value = std::strtod(text.c_str(), &end);
         if (text.empty() || end != text.c_str() + text.size()) {
-          return "'" + text + "' is not a number";
+          return "'" + abbreviated(text) + "' is not a number";
         }
-        return inside(value) ? "" : "must be " + rule + ", got " + text;
+        return inside(value) ? "" : "must be " + rule + ", got " + abbreviated(text);
       },
       rule);
 }
@@ -44,6 +45,22 @@ CLI::Validator positiveNumber() {
 }
 CLI::Validator nonNegativeNumber() {
   return numberIn("non-negative", [](double v) { return v >= 0.0; });
+}
+// A name or path given empty (--output "" from an unset shell variable) is a
+// mistake, not a request for the default: leaving the option out is that.
+CLI::Validator nonEmpty() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string { return text.empty() ? "must not be empty" : ""; }, "");
+}
+
+// CLI11's message on one line a user can read: it quotes what was typed as
+// it was typed, so each word is cut as our own messages cut a value, and the
+// line after 200 characters (a long value with spaces in it).
+std::string oneReadableLine(const CLI::ParseError& error) {
+  std::istringstream words(error.what());
+  std::string line, word;
+  while (words >> word) line += (line.empty() ? "" : " ") + abbreviated(word);
+  return line.size() <= 200 ? line : line.substr(0, 200) + "...";
 }
 
 int badInput(const std::string& message) {
@@ -87,7 +104,7 @@ struct CommandLine {
 };
 
 void addOptions(CLI::App& app, CommandLine& line) {
-  app.add_option("--problem", line.problem, "problem to run (see --list)");
+  app.add_option("--problem", line.problem, "problem to run (see --list)")->check(nonEmpty());
   app.add_option("--mode", line.mode, "lagrange (pure Lagrangian) or remap (Lagrange-Remap)")
       ->check(CLI::IsMember({"lagrange", "remap"}));
   app.add_option("--scale", line.scale, "multiply every cell count by S")->check(positiveNumber());
@@ -98,16 +115,20 @@ void addOptions(CLI::App& app, CommandLine& line) {
   app.add_option("--set", line.assignments, "set a problem or numerics key: --set key=value")
       ->allow_extra_args(false);
   app.add_option("--input", line.input, "TOML input deck (tables become dotted keys)")
+      ->check(nonEmpty())
       ->check(CLI::ExistingFile);
-  app.add_option("--output", line.output, "output directory (default out/<problem>)");
-  app.add_option("--output-times", line.output_times, "snapshot times, comma separated [s]")
+  app.add_option("--output", line.output, "output directory (default out/<problem>)")
+      ->check(nonEmpty());
+  app.add_option("--output-times", line.output_times,
+                 "snapshot times, comma separated, in any order [s]")
       ->delimiter(',');
   app.add_option("--output-every", line.output_every, "snapshot every N steps")
       ->check(nonNegativeNumber());
   app.add_option("--checkpoint-every", line.checkpoint_every,
                  "write <output>/checkpoint.h5 every N steps (and when a run fails)")
       ->check(nonNegativeNumber());
-  app.add_option("--restart", line.restart_file, "continue the run saved in this checkpoint file");
+  app.add_option("--restart", line.restart_file, "continue the run saved in this checkpoint file")
+      ->check(nonEmpty());
   app.add_flag("--quiet", line.quiet, "no progress line");
   app.add_flag("--list", line.list, "list the built-in problems");
   app.add_flag("--print-config", line.print_config,
@@ -121,8 +142,6 @@ void takeProblemAndModeFromDeck(CommandLine& line, bool mode_given) {
   if (line.problem.empty()) {
     Config::peekDeck(line.input, &line.problem, nullptr);
     if (line.problem.empty()) {
-      // A deck with a syntax error says so (with its line) rather than "no problem".
-      Config().loadDeck(line.input, nullptr, nullptr);
       throw ConfigError("input deck '" + line.input +
                         "' names no problem and --problem is not given");
     }
@@ -132,7 +151,7 @@ void takeProblemAndModeFromDeck(CommandLine& line, bool mode_given) {
     Config::peekDeck(line.input, nullptr, &deck_mode);
     if (!deck_mode.empty()) line.mode = deck_mode;
     if (line.mode != "lagrange" && line.mode != "remap") {
-      throw ConfigError("input deck '" + line.input + "': mode '" + line.mode +
+      throw ConfigError("input deck '" + line.input + "': mode '" + abbreviated(line.mode) +
                         "' is not one of lagrange|remap");
     }
   }
@@ -146,8 +165,8 @@ Config resolveConfig(const Problem& problem, const CommandLine& line, const CLI:
     std::string deck_problem, deck_mode;
     config.loadDeck(line.input, &deck_problem, &deck_mode);
     if (!deck_problem.empty() && deck_problem != line.problem) {
-      throw ConfigError("input deck '" + line.input + "' is for problem '" + deck_problem +
-                        "', not '" + line.problem + "'");
+      throw ConfigError("input deck '" + line.input + "' is for problem '" +
+                        abbreviated(deck_problem) + "', not '" + line.problem + "'");
     }
   }
   for (const auto& assignment : line.assignments) config.setAssignment(assignment);
@@ -196,7 +215,8 @@ int runAndReport(const RunOptions& options) {
 int runCommandLine(int argc, char* argv[]) {
   CLI::App app{
       "lagremap: 3D cell-centred Lagrangian (and Lagrange-Remap) multi-material dynamics.\n"
-      "Kokkos options (--kokkos-threads=N or --kokkos-num-threads=N, ...) are accepted too.\n"
+      "Kokkos options (--kokkos-threads=N or --kokkos-num-threads=N, ...) are accepted too;\n"
+      "--kokkos-help lists them.\n"
       "Threads: OMP_NUM_THREADS (or --kokkos-threads). Thread binding is OpenMP's default\n"
       "unless OMP_PROC_BIND is set; OMP_PROC_BIND=spread OMP_PLACES=threads is fastest\n"
       "(scripts/run.sh sets them). Kokkos' advice about it is not printed.",
@@ -208,10 +228,7 @@ int runCommandLine(int argc, char* argv[]) {
   } catch (const CLI::CallForHelp& help) {
     return app.exit(help);
   } catch (const CLI::ParseError& error) {
-    std::string message = error.what();
-    for (auto& ch : message)
-      if (ch == '\n') ch = ' ';
-    return badInput(message);
+    return badInput(oneReadableLine(error));
   }
   if (line.list) {
     for (const auto& problem : problemRegistry()) {

@@ -1,7 +1,10 @@
 // Kokkos for the life of the process (a ScopeGuard that also accepts both
 // spellings of the thread-count flag): Kokkos 3.x reads --kokkos-threads=N,
 // 4.x --kokkos-num-threads=N, and a lagremap user or script may write either
-// with any Kokkos. Used by the driver, the test mains and the benchmarks.
+// with any Kokkos. --help and -h are the program's own: Kokkos, which would
+// print its 40 lines of help for --help before the program's usage, prints
+// them for --kokkos-help only. Used by the driver, the test mains and the
+// benchmarks.
 #pragma once
 
 #include <string>
@@ -12,14 +15,20 @@ namespace lagremap {
 class KokkosSession {
  public:
   // Rewrites the flag in argv to the spelling of the Kokkos built against,
-  // then initialises Kokkos, which removes its flags from argc/argv.
+  // then initialises Kokkos, which removes its flags from argc/argv; --help
+  // and -h are left in argv for the program, unseen by Kokkos.
   KokkosSession(int& argc, char* argv[]);
   ~KokkosSession();
   KokkosSession(const KokkosSession&) = delete;
   KokkosSession& operator=(const KokkosSession&) = delete;
 
+  // Whether the command line held --kokkos-help: Kokkos has printed its help
+  // (and removed the flag), and the program has nothing more to do.
+  bool printedKokkosHelp() const { return printed_kokkos_help_; }
+
  private:
   std::vector<std::string> rewritten_;  // argv entries that point here must outlive Kokkos
+  bool printed_kokkos_help_ = false;
 };
 
 // The thread-count flag as this Kokkos spells it ("--kokkos-threads" or

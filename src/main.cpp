@@ -8,5 +8,6 @@ int main(int argc, char* argv[]) {
   lagremap::flushDenormalsToZero();  // before Kokkos starts its threads, which inherit it
   lagremap::parallel::Session mpi(argc, argv);  // one rank per socket or GPU (method.md §7.5)
   lagremap::KokkosSession kokkos(argc, argv);
+  if (kokkos.printedKokkosHelp()) return 0;
   return lagremap::runCommandLine(argc, argv);
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <iomanip>
 #include <memory>
@@ -32,13 +33,24 @@ void checkRunOptions(const RunOptions& options) {
     throw std::logic_error("run options: the keys were declared for mode '" + config.mode() +
                            "', not '" + options.mode + "'");
   }
+  // A snapshot time past t_end is a time the run never reaches: a mistake to
+  // say, not to drop (a problem's own times are those up to t_end already).
   const double t_end = config.real("t_end");
   for (double t_out : options.output_times) {
     if (!(t_out >= 0.0 && t_out <= t_end)) {
-      throw ConfigError("output time " + std::to_string(t_out) + " is outside [0, t_end]");
+      char text[120];
+      std::snprintf(text, sizeof text, "output time %.6g s is outside [0, t_end = %.6g s]", t_out,
+                    t_end);
+      throw ConfigError(text);
     }
   }
   if (options.output_every < 0) throw ConfigError("--output-every must be >= 0");
+  // The check.* keys are tolerances, bounds and reference sizes: a negative
+  // one would fail its check whatever the run did.
+  for (const auto& [key, param] : config.params()) {
+    if (key.rfind("check.", 0) == 0 && param.type == ParamType::Real && !(config.real(key) >= 0.0))
+      throw ConfigError(key + " must be >= 0, got " + param.value);
+  }
 }
 
 }  // namespace

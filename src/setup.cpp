@@ -70,6 +70,10 @@ Numerics readNumerics(const Config& config) {
   if (!(numerics.dt_initial_factor > 0.0 && numerics.dt_initial_factor <= 1.0)) {
     throw ConfigError("numerics.dt_initial_factor must be in (0, 1]");
   }
+  if (!(config.real("numerics.dt_min_fraction") >= 0.0 &&
+        config.real("numerics.dt_min_fraction") < 1.0)) {
+    throw ConfigError("numerics.dt_min_fraction must be in [0, 1)");
+  }
   if (!(numerics.dt_drop_fraction >= 0.0 && numerics.dt_drop_fraction < 1.0)) {
     throw ConfigError("numerics.dt_drop_fraction must be in [0, 1)");
   }

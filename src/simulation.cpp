@@ -31,6 +31,21 @@ std::string shortNumber(double value) {
   return text;
 }
 
+// The snapshot times after `now`, sorted, each once: a time less than
+// `resolution` (the run's dt_min) after the one before it, or after `now`,
+// is that one's snapshot. The step to it would be shorter than dt_min, and
+// the growth limit would hold the step after it below dt_min too: a time
+// given twice would stop the run with a time step collapse.
+std::vector<double> snapshotTimesAhead(std::vector<double> times, double now, double resolution) {
+  std::sort(times.begin(), times.end());
+  std::vector<double> ahead;
+  for (double t : times) {
+    const double last = ahead.empty() ? now : ahead.back();
+    if (t > last && t - last >= resolution) ahead.push_back(t);
+  }
+  return ahead;
+}
+
 }  // namespace
 
 Simulation::Simulation(const RunOptions& options, const Problem& problem)
@@ -92,10 +107,8 @@ Simulation::Simulation(const RunOptions& options, const Problem& problem)
   }
   totals_ = loop_.initial;
   start_ = loop_;
-  for (double t_out : options.output_times) {
-    if (t_out > loop_.time) pending_outputs_.push_back(t_out);
-  }
-  std::sort(pending_outputs_.begin(), pending_outputs_.end());
+  pending_outputs_ = snapshotTimesAhead(options.output_times, loop_.time, numerics_.dt_min);
+  if (!restarted_) refuseAFirstStepBelowTheFloor();
   Kokkos::fence();
   setup_seconds_.initialize = phase.seconds();
   setup_peak_bytes_ = peakResidentBytes();
@@ -138,6 +151,20 @@ TimeStepChoice Simulation::chooseTimeStep() const {
   }
   if (loop_.time + choice.dt >= t_end_) choice = {t_end_ - loop_.time, "end"};
   return choice;
+}
+
+// A first step already below numerics.dt_min would stop the run at once with a
+// time step collapse, which is the input's doing: a t_end (1e300 s) longer
+// than dt_min_fraction resolves, or a dt_min_fraction too large for t_end.
+void Simulation::refuseAFirstStepBelowTheFloor() const {
+  const TimeStepChoice first = chooseTimeStep();
+  if (!(first.dt < numerics_.dt_min) || first.lands_on_end() || first.lands_on_output()) return;
+  const double fraction = options_.config.real("numerics.dt_min_fraction");
+  throw ConfigError(
+      "t_end = " + shortNumber(t_end_) + " s: the first step, " + shortNumber(first.dt) +
+      " s, is below numerics.dt_min_fraction x t_end = " + shortNumber(numerics_.dt_min) +
+      " s; at dt_min_fraction " + shortNumber(fraction) + ", t_end can be at most " +
+      shortNumber(first.dt / fraction) + " s");
 }
 
 std::string Simulation::stopReason(const TimeStepChoice& choice) const {

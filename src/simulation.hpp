@@ -91,6 +91,8 @@ class Simulation {
   TimeStepChoice chooseTimeStep() const;
   // Why the loop cannot take this step ("" if it can): step limit, dt collapse.
   std::string stopReason(const TimeStepChoice& choice) const;
+  // Throws ConfigError when a fresh run's first step is below numerics.dt_min.
+  void refuseAFirstStepBelowTheFloor() const;
   // One step of Fig. 2; throws RunFailure with the start-of-step state restored.
   void advance(const TimeStepChoice& choice);
   // Boundary impulse and work of the step, the totals, the probe.
@@ -113,7 +115,7 @@ class Simulation {
   SetupSeconds setup_seconds_;
   long setup_peak_bytes_ = 0;
   long loop_reductions_ = 0;
-  std::vector<double> pending_outputs_;  // snapshot times still ahead, sorted
+  std::vector<double> pending_outputs_;  // snapshot times still ahead, sorted, each once
   Totals totals_;
   std::string failure_;
   double wall_seconds_ = 0.0;

@@ -33,6 +33,11 @@ TEST(CommandLine, MalformedInputGivesExitCodeTwoAndOneLine) {
   std::ofstream(deck) << "[mesh]\nnx = [1, \n";
   const std::string wrong_key_deck = dir + "/wrong_key.toml";
   std::ofstream(wrong_key_deck) << "problem = \"sod\"\n[mesh]\nnq = 3\n";
+  // Not text: a NUL byte, and a Latin-1 e-acute (not UTF-8), on the second line.
+  const std::string nul_deck = dir + "/nul.toml";
+  std::ofstream(nul_deck) << "problem = \"sod\"\n# a" << '\0' << "comment\n";
+  const std::string latin1_deck = dir + "/latin1.toml";
+  std::ofstream(latin1_deck) << "problem = \"sod\"\n# caf\xe9\n";
   const std::string out = " --output " + dir + "/out";
   const std::vector<BadInput> table = {
       {"", "--problem is required"},
@@ -50,6 +55,13 @@ TEST(CommandLine, MalformedInputGivesExitCodeTwoAndOneLine) {
       {"--problem sod --set mesh.nx=0", "mesh"},
       {"--problem sod --set numerics.cfl=2", "numerics.cfl"},
       {"--problem sod --set numerics.dt_drop_fraction=1.5", "numerics.dt_drop_fraction"},
+      {"--problem sod --set numerics.dt_min_fraction=-1", "numerics.dt_min_fraction"},
+      // A floor above the first step: the run would stop at once (time step
+      // collapse), whether the floor is too high or t_end beyond what it resolves.
+      {"--problem sod --set numerics.dt_min_fraction=0.5", "numerics.dt_min_fraction x t_end"},
+      {"--problem sod --t-end 1e300", "t_end can be at most"},
+      {"--problem wilkins --set al.Gamma0=-1", "Gamma0 must be > 0"},
+      {"--problem sod --set check.l1_density_bound=-1", "check.l1_density_bound must be >= 0"},
       {"--problem sod --set =3", "key=value"},
       {"--problem sod --set bc.xmin=sticky", "bc.xmin"},
       {"--problem sod --set left.rho=-1", "densities"},
@@ -57,18 +69,26 @@ TEST(CommandLine, MalformedInputGivesExitCodeTwoAndOneLine) {
       {"--problem sod --mode euler", "--mode"},
       {"--problem sod --t-end -1", "--t-end"},
       {"--problem sod --input /nonexistent/deck.toml", "--input"},
+      {"--problem sod --input /dev/zero", "not a regular file"},
+      {"--problem sod --input /dev/urandom", "not a regular file"},
+      {"--problem sod --scale 1e300", "mesh.nx = 2e+302"},
       {"--problem sod --bogus-flag", "bogus"},
       {"--problem", "--problem"},
       {"--problem sod --output-times 0.5", "output time"},
+      {"--problem sod --output-times 1e-9,0.25", "0.25 s is outside [0, t_end = 0.2 s]"},
       {"--problem sod --set gas.gamma=1", "gamma"},
       {"--problem sod --set geometry.x_interface=3", "x_interface"},
       {"--problem sod --set mesh.nx=100000000", "GB"},
       {"--output /proc/no/such/dir --problem sod", "output directory"},
+      // (an unset shell variable: not the default out/sod)
+      {"--output '' --problem sod", "--output: must not be empty"},
+      {"--restart '' --problem sod", "--restart: must not be empty"},
   };
   for (const BadInput& bad : table) {
     const std::string args = bad.args;
-    const bool runs_sod = args.rfind("--problem sod", 0) == 0;
-    const auto result = runLagremap(args + (runs_sod ? out : ""));
+    const bool runs =
+        args.rfind("--problem sod", 0) == 0 || args.rfind("--problem wilkins", 0) == 0;
+    const auto result = runLagremap(args + (runs ? out : ""));
     EXPECT_EQ(result.exit_code, 2) << bad.args << "\n" << result.output;
     EXPECT_EQ(lineCount(result.error), 1) << bad.args << "\n" << result.error;
     EXPECT_LT(result.error.size(), 300u) << bad.args << ": a line a user can read\n"
@@ -77,12 +97,52 @@ TEST(CommandLine, MalformedInputGivesExitCodeTwoAndOneLine) {
     EXPECT_NE(result.error.find(bad.expected), std::string::npos)
         << bad.args << ": '" << result.error << "' does not mention '" << bad.expected << "'";
   }
-  for (const std::string& file : {deck, wrong_key_deck}) {
+  for (const std::string& file : {deck, wrong_key_deck, nul_deck, latin1_deck}) {
     const auto result = runLagremap("--input " + file + out);
     EXPECT_EQ(result.exit_code, 2) << result.output;
     EXPECT_EQ(lineCount(result.error), 1) << result.error;
     EXPECT_NE(result.error.find(file), std::string::npos) << result.error;
   }
+  for (const std::string& file : {nul_deck, latin1_deck}) {
+    const auto result = runLagremap("--input " + file + out);
+    EXPECT_NE(result.error.find("line 2:"), std::string::npos) << result.error;
+  }
+  std::filesystem::remove_all(dir);
+}
+
+// A value of 100 kB (a pasted file, a runaway script) is cut in the error
+// line to its first 60 characters and "...", whatever option, key or deck
+// carried it; the rest of the line still says what was wrong with it.
+TEST(CommandLine, ALongValueIsCutInTheErrorLine) {
+  const std::string dir = testing::scratchDir("cli_long");
+  const std::string value(100000, '7');
+  const std::string spaced = "1" + std::string(100000, ' ') + "2";
+  const std::string deck = dir + "/long.toml";
+  std::ofstream(deck) << "problem = \"sod\"\n[left]\np = \"" << value << "\"\n";
+  const std::vector<std::pair<std::string, const char*>> cases = {
+      {"--problem sod --set left.p=x" + value, "for key 'left.p'"},
+      {"--problem sod --set x" + value + "=1", "unknown key"},
+      {"--problem sod --set bc.xmin=x" + value, "for key 'bc.xmin'"},
+      {"--problem x" + value, "unknown problem"},
+      {"--problem sod --mode x" + value, "--mode"},
+      {"--problem sod --scale x" + value, "is not a number"},
+      {"--problem sod --cfl 7" + value, "--cfl: must be between"},
+      {"--problem sod --order x" + value, "--order"},
+      {"--problem sod --output-times 0.1,x" + value, "--output-times"},
+      {"--problem sod --x" + value, "not expected"},
+      {"--problem sod --mode '" + spaced + "'", "--mode"},
+      {"--input " + deck, "for key 'left.p'"},
+  };
+  for (const auto& [args, expected] : cases) {
+    const auto result = runLagremap(args + " --output " + dir + "/out");
+    const std::string shown = args.substr(0, 40);
+    EXPECT_EQ(result.exit_code, 2) << shown << "\n" << result.output.substr(0, 400);
+    EXPECT_EQ(lineCount(result.error), 1) << shown;
+    EXPECT_LT(result.error.size(), 300u) << shown << "\n" << result.error.substr(0, 400);
+    EXPECT_NE(result.error.find(expected), std::string::npos) << shown << "\n" << result.error;
+  }
+  const auto cut = runLagremap("--problem sod --set left.p=x" + value);
+  EXPECT_NE(cut.error.find("'x" + value.substr(0, 59) + "...'"), std::string::npos) << cut.error;
   std::filesystem::remove_all(dir);
 }
 
@@ -128,9 +188,19 @@ TEST(CommandLine, ListHelpAndPrintConfig) {
   EXPECT_EQ(list.exit_code, 0);
   EXPECT_NE(list.output.find("sod"), std::string::npos);
   EXPECT_NE(list.output.find("sedov"), std::string::npos);
-  const auto help = runLagremap("--help");
-  EXPECT_EQ(help.exit_code, 0);
-  EXPECT_NE(help.output.find("--print-config"), std::string::npos);
+  // --help (and -h) is lagremap's usage from its first line, without Kokkos'
+  // own help, which --kokkos-help prints alone.
+  for (const char* flag : {"--help", "-h", "--problem sod --help"}) {
+    const auto help = runLagremap(flag);
+    EXPECT_EQ(help.exit_code, 0) << flag;
+    EXPECT_EQ(help.output.rfind("lagremap: 3D cell-centred", 0), 0u) << flag << "\n" << help.output;
+    EXPECT_NE(help.output.find("--print-config"), std::string::npos) << flag;
+    EXPECT_EQ(help.output.find("Kokkos command line arguments"), std::string::npos) << flag;
+  }
+  const auto kokkos_help = runLagremap("--kokkos-help");
+  EXPECT_EQ(kokkos_help.exit_code, 0) << kokkos_help.output;
+  EXPECT_NE(kokkos_help.output.find("--kokkos-help"), std::string::npos) << kokkos_help.output;
+  EXPECT_EQ(kokkos_help.output.find("--print-config"), std::string::npos) << kokkos_help.output;
   const auto config = runLagremap(
       "--problem sod --scale 2 --set left.p=3 --t-end 2.5e-7 --cfl 0.25 --print-config");
   EXPECT_EQ(config.exit_code, 0);
@@ -296,6 +366,34 @@ TEST(CommandLine, SnapshotsAtRequestedTimes) {
   std::filesystem::remove_all(dir);
 }
 
+// Snapshot times in any order, a time given twice, or closer to another (or
+// to the start) than the run's smallest step (numerics.dt_min_fraction x
+// t_end): one snapshot each, in time order. Given twice, a time once asked
+// for a zero step and stopped the run (sod: "time step collapse, dt = 0";
+// taylor in remap mode: a NaN energy).
+TEST(CommandLine, RepeatedAndUnsortedOutputTimesAreOneSnapshotEach) {
+  const std::string dir = testing::scratchDir("cli_repeated_times");
+  const auto sod = runLagremap(
+      "--problem sod --scale 0.25 --quiet --output-times "
+      "0.1,0.05,0.1,1e-20,0.1000000000000001 --output " +
+      dir + "/sod");
+  ASSERT_EQ(sod.exit_code, 0) << sod.output;
+  const std::string series = testing::readFile(dir + "/sod/fields.xmf");
+  std::string times;
+  for (std::size_t at = series.find("Value=\""); at != std::string::npos;
+       at = series.find("Value=\"", at + 1)) {
+    times += series.substr(at + 7, series.find('"', at + 7) - at - 7) + " ";
+  }
+  EXPECT_EQ(times, "0 0.05 0.1 0.2 ") << series;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/sod/fields_00004.h5"));
+  const auto taylor = runLagremap(
+      "--problem taylor --mode remap --scale 0.25 --t-end 0.0005 --output-times 0.0001,0.0001 "
+      "--quiet --output " +
+      dir + "/taylor");
+  EXPECT_EQ(taylor.exit_code, 0) << taylor.output;
+  std::filesystem::remove_all(dir);
+}
+
 // A problem's own snapshot times when the command line gives none: `ball`
 // writes verification.md §8.7's every 0.5 us (those up to the run's t_end).
 TEST(CommandLine, ProblemsOwnSnapshotTimes) {
@@ -328,8 +426,12 @@ TEST(CommandLine, FailureMidRunGivesExitCodeThreeAndWritesLastGoodState) {
   };
   const std::vector<Failure> failures = {
       {"--problem sod --set numerics.max_steps=5", "max_steps"},
-      // A dt floor above the stable dt: the step collapses below it at once.
-      {"--problem sod --set numerics.dt_min_fraction=0.5", "time step collapse"},
+      // A dt floor between sedov's first two steps: the first, the whole
+      // stable dt (dt_initial_factor 1, 0.0106 s), passes; the second,
+      // limited by the volume change (0.00193 s), collapses below 0.005 s.
+      {"--problem sedov --scale 0.3 --set numerics.dt_initial_factor=1 "
+       "--set numerics.dt_min_fraction=0.005",
+       "step 2: time step collapse, dt = 0.00193"},
       // Sedov's stable dt falls to 0.75 of its largest in the first steps
       // (the blast leaves its cell): a 0.9 drop limit stops it, with the
       // fraction named.

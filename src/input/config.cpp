@@ -1,11 +1,14 @@
 #include "config.hpp"
 
 #include <toml++/toml.h>
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <functional>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 
 namespace lagremap {
@@ -64,7 +67,37 @@ std::string typeName(const Param& param) {
   return "";
 }
 
+// The tables of the deck at `path`, or ConfigError naming it. Only a regular
+// file is read: a device would read as an empty deck (/dev/urandom) or never
+// end (/dev/zero), and a pipe only once (the driver reads the deck twice).
+// toml++ refuses what is not text (invalid UTF-8, control characters).
+toml::table parseDeck(const std::string& path) {
+  const std::string deck = "input deck '" + path + "'";
+  std::error_code error;
+  const auto status = std::filesystem::status(path, error);
+  if (!std::filesystem::exists(status)) throw ConfigError(deck + " does not exist");
+  if (!std::filesystem::is_regular_file(status)) {
+    throw ConfigError(deck + " is not a regular file (a directory, device or pipe)");
+  }
+  try {
+    return toml::parse_file(path);
+  } catch (const toml::parse_error& syntax) {
+    const auto line = syntax.source().begin.line;  // 0: the file as a whole
+    throw ConfigError(deck + (line > 0 ? " line " + std::to_string(line) : "") + ": " +
+                      std::string(syntax.description()));
+  }
+}
+
 }  // namespace
+
+std::string abbreviated(const std::string& text) {
+  constexpr std::size_t kShown = 60;
+  if (text.size() <= kShown) return text;
+  // (back to the start of a UTF-8 character: half of one prints as garbage)
+  std::size_t cut = kShown;
+  while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;
+  return text.substr(0, cut) + "...";
+}
 
 void Config::add(Param param) {
   param.default_value = param.value;
@@ -106,7 +139,7 @@ void Config::setDefault(const std::string& key, const std::string& value) {
 void Config::set(const std::string& key, const std::string& value) {
   auto it = params_.find(key);
   if (it == params_.end()) {
-    throw ConfigError("unknown key '" + key + "' (see --print-config for the keys)");
+    throw ConfigError("unknown key '" + abbreviated(key) + "' (see --print-config for the keys)");
   }
   Param& param = it->second;
   bool ok = true;
@@ -137,7 +170,7 @@ void Config::set(const std::string& key, const std::string& value) {
       break;
   }
   if (!ok) {
-    throw ConfigError("bad value '" + value + "' for key '" + key + "': expected " +
+    throw ConfigError("bad value '" + abbreviated(value) + "' for key '" + key + "': expected " +
                       typeName(param));
   }
   param.value = normalized;
@@ -146,30 +179,19 @@ void Config::set(const std::string& key, const std::string& value) {
 void Config::setAssignment(const std::string& assignment) {
   const auto equals = assignment.find('=');
   if (equals == std::string::npos || equals == 0) {
-    throw ConfigError("bad --set '" + assignment + "': expected key=value");
+    throw ConfigError("bad --set '" + abbreviated(assignment) + "': expected key=value");
   }
   set(assignment.substr(0, equals), assignment.substr(equals + 1));
 }
 
 void Config::peekDeck(const std::string& path, std::string* problem, std::string* mode) {
-  try {
-    const toml::table deck = toml::parse_file(path);
-    if (problem) *problem = deck["problem"].value_or(std::string());
-    if (mode) *mode = deck["mode"].value_or(std::string());
-  } catch (const toml::parse_error&) {
-    // Syntax errors are reported by loadDeck with their line.
-  }
+  const toml::table deck = parseDeck(path);
+  if (problem) *problem = deck["problem"].value_or(std::string());
+  if (mode) *mode = deck["mode"].value_or(std::string());
 }
 
 void Config::loadDeck(const std::string& path, std::string* problem, std::string* mode) {
-  toml::table deck;
-  try {
-    deck = toml::parse_file(path);
-  } catch (const toml::parse_error& error) {
-    const auto& where = error.source().begin;
-    throw ConfigError("input deck '" + path + "' line " + std::to_string(where.line) + ": " +
-                      std::string(error.description()));
-  }
+  const toml::table deck = parseDeck(path);
   // Walk the tables; each leaf becomes a dotted key.
   std::function<void(const toml::table&, const std::string&)> walk =
       [&](const toml::table& table, const std::string& prefix) {
@@ -190,7 +212,7 @@ void Config::loadDeck(const std::string& path, std::string* problem, std::string
           } else if (const auto* b = node.as_boolean()) {
             text = b->get() ? "true" : "false";
           } else {
-            throw ConfigError("input deck '" + path + "': key '" + key +
+            throw ConfigError("input deck '" + path + "': key '" + abbreviated(key) +
                               "' must be a number, string or boolean");
           }
           if (key == "problem" && problem) {
@@ -217,9 +239,14 @@ void Config::scaleCellCounts(double scale) {
     }
     if (!param.cell_count) continue;
     const long count = integer(key);
-    if (count > 1) {
-      param.value = std::to_string(std::max(1L, std::lround(static_cast<double>(count) * scale)));
+    if (count <= 1) continue;
+    // (a mesh axis is an int; a larger count would not even round to a long)
+    const double scaled = std::max(1.0, std::round(static_cast<double>(count) * scale));
+    if (!(scaled <= std::numeric_limits<int>::max())) {
+      throw ConfigError("--scale " + formatReal(scale) + " makes " + key + " = " +
+                        formatReal(scaled) + ", more cells than a mesh axis holds (2^31 - 1)");
     }
+    param.value = std::to_string(static_cast<long>(scaled));
   }
 }
 

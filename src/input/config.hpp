@@ -15,6 +15,11 @@ struct ConfigError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// `text` for an error message: its first 60 characters and "..." when
+// longer, so that the message stays a line a user can read whatever was typed
+// (a 100 kB value, a pasted file).
+std::string abbreviated(const std::string& text);
+
 enum class ParamType { Real, Integer, Text, Choice, Boolean };
 
 struct Param {
@@ -55,11 +60,16 @@ class Config {
   void setAssignment(const std::string& assignment);
   // Reads a TOML deck: nested tables become dotted keys. The special keys
   // `problem` and `mode` are returned through the out parameters if present.
+  // A file that is not a deck throws ConfigError naming it: not a regular
+  // file (a device or a pipe), or not TOML (binary, not UTF-8, a syntax
+  // error: with its line).
   void loadDeck(const std::string& path, std::string* problem, std::string* mode);
-  // Reads only the top-level `problem` and `mode` of a deck (empty if absent).
+  // Reads only the top-level `problem` and `mode` of a deck (empty if absent);
+  // throws as loadDeck does for a file that is not a deck.
   static void peekDeck(const std::string& path, std::string* problem, std::string* mode);
   // Multiplies every cell-count key with a value > 1 by `scale` and divides
-  // every cell length left at its default by it (--scale).
+  // every cell length left at its default by it (--scale); a count that
+  // would not fit a mesh axis (2^31 cells) throws ConfigError.
   void scaleCellCounts(double scale);
 
   bool has(const std::string& key) const { return params_.count(key) != 0; }
