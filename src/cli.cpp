@@ -251,7 +251,10 @@ int runCommandLine(int argc, char* argv[]) {
     return runAndReport(runOptions(problem, line, std::move(config), app.count("--output-times")));
   } catch (const ConfigError& error) {
     return badInput(error.what());
-  } catch (const std::exception& error) {
+  } catch (const parallel::AgreedError& error) {
+    if (parallel::isRoot()) std::fprintf(stderr, "lagremap: error: %s\n", error.what());
+    return kExitRunFailed;
+  } catch (const std::exception& error) {  // (perhaps this rank's alone: each says so)
     std::fprintf(stderr, "lagremap: error: %s\n", error.what());
     return kExitRunFailed;
   }

@@ -1,8 +1,10 @@
 #include "outputs.hpp"
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <iomanip>
 
@@ -156,15 +158,20 @@ HistoryFile::HistoryFile(const RunOptions& options, const Simulation& simulation
     if (code) {
       error = "cannot create output directory '" + dir + "': " + code.message();
     } else {
-      const std::string kept =
-          simulation.restarted() ? historyUpTo(dir + "/history.csv", simulation.step()) : "";
-      file_.open(dir + "/history.csv");
-      if (!file_) error = "cannot write '" + dir + "/history.csv'";
-      if (kept.empty()) {
-        file_ << "step,t,dt,dt_reason,mass,momentum_x,momentum_y,momentum_z,kinetic_energy,"
-                 "internal_energy,total_energy\n";
+      path_ = dir + "/history.csv";
+      const std::string kept = simulation.restarted() ? historyUpTo(path_, simulation.step()) : "";
+      file_.open(path_);
+      if (!file_) {
+        error = "cannot write '" + path_ + "'";
+      } else {
+        if (kept.empty()) {
+          file_ << "step,t,dt,dt_reason,mass,momentum_x,momentum_y,momentum_z,kinetic_energy,"
+                   "internal_energy,total_energy\n";
+        }
+        file_ << kept << std::setprecision(15);
+        flush();
+        error = error_;
       }
-      file_ << kept << std::setprecision(15);
     }
   }
   error = parallel::firstMessage(error);
@@ -185,6 +192,25 @@ void HistoryFile::writeLine(long step, double t, double dt, const char* reason,
   file_ << step << ',' << t << ',' << dt << ',' << reason << ',' << totals.mass << ','
         << totals.momentum.x << ',' << totals.momentum.y << ',' << totals.momentum.z << ','
         << totals.kinetic << ',' << totals.internal << ',' << totals.total() << '\n';
+  flush();
+}
+
+void HistoryFile::flush() {
+  file_.flush();
+  if (file_) {
+    written_ = file_.tellp();
+    return;
+  }
+  const int code = errno;  // (of the write that failed)
+  error_ = "cannot write '" + path_ + "': " + std::strerror(code);
+  file_.close();
+  std::error_code ignored;
+  std::filesystem::resize_file(path_, std::uintmax_t(written_), ignored);
+}
+
+void HistoryFile::finish(const Simulation&) {
+  const std::string error = parallel::firstMessage(error_);
+  if (!error.empty()) throw parallel::AgreedError(error);
 }
 
 SnapshotOutput::SnapshotOutput(const RunOptions& options, const Simulation& simulation)

@@ -22,16 +22,27 @@ FinalFields copyFields(const Mesh& mesh, bool gather, const State& state, double
 // history.csv: the totals of every step, after the initial state's line. A
 // restart keeps the lines of the steps it does not redo. Creates the output
 // directory; a directory or file that cannot be written is ConfigError
-// (collective: every rank throws rank 0's message).
+// (collective: every rank throws rank 0's message). Each line goes to disk
+// with its step, so a run killed or stopped by a full disk leaves the lines
+// of its steps so far; a line the disk cannot take is cut off, the file
+// ends with the last whole line, and the run fails at its end.
 class HistoryFile : public LoopObserver {
  public:
   HistoryFile(const RunOptions& options, const Simulation& simulation);
   void start(const Simulation& simulation) override;
   void afterStep(const Simulation& simulation, const TimeStepChoice& choice) override;
+  // Throws (every rank) if a line could not be written.
+  void finish(const Simulation& simulation) override;
 
  private:
   void writeLine(long step, double t, double dt, const char* reason, const Totals& totals);
+  // Sends what the stream holds to disk; on failure cuts the file back to
+  // its last whole line and stops writing.
+  void flush();
+  std::string path_;
   std::ofstream file_;
+  std::streamoff written_ = 0;  // bytes on disk, whole lines
+  std::string error_;
 };
 
 // Snapshots: the initial state, each requested output time, every

@@ -56,6 +56,12 @@ void sum(std::int64_t* values, int n) {
   MPI_Allreduce(MPI_IN_PLACE, values, n, MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD);
 }
 
+void sum(std::uint64_t* values, int n) {
+  if (size() == 1) return;
+  ++reductions;
+  MPI_Allreduce(MPI_IN_PLACE, values, n, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
+}
+
 double sum(double value) {
   sum(&value, 1);
   return value;

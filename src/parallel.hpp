@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <ostream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,8 @@ inline bool isRoot() {
 void sum(double* values, int n);
 // In-place sums over the ranks of n 64-bit integers (ExactSum's digits).
 void sum(std::int64_t* values, int n);
+// In-place sums modulo 2^64 over the ranks of n unsigned words (checksums).
+void sum(std::uint64_t* values, int n);
 double sum(double value);
 double min(double value);
 double max(double value);
@@ -41,6 +44,11 @@ std::string broadcast(const std::string& text);
 // ("" if none): an error found by one rank becomes every rank's error.
 std::string firstMessage(const std::string& message);
 void barrier();
+// An error every rank throws with the same message (after firstMessage):
+// reported once, by rank 0.
+struct AgreedError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
 // A number addressed by a key (a global id), for deliver().
 struct KeyedValue {
   long key = 0;

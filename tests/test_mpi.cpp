@@ -563,10 +563,14 @@ TEST(Restart, ACorruptedOrTruncatedCheckpointIsBadInputOnEveryRank) {
     std::filesystem::copy_file(good, dir + "/corrupted.h5");
     std::fstream corrupt(dir + "/corrupted.h5", std::ios::in | std::ios::out | std::ios::binary);
     corrupt.write("not a checkpoint", 16);  // over the superblock
+    // One mantissa bit of a cell's mass, which one rank reads: the checksum,
+    // summed over the ranks, tells them all.
+    std::filesystem::copy_file(good, dir + "/flipped.h5");
+    testing::flipBit(dir + "/flipped.h5", testing::valueOffset(good, "cells/m_c", 100) + 3, 2);
   }
   parallel::barrier();
   options.write_files = false;
-  for (const char* name : {"truncated.h5", "corrupted.h5", "missing.h5"}) {
+  for (const char* name : {"truncated.h5", "corrupted.h5", "flipped.h5", "missing.h5"}) {
     options.restart_file = dir + "/" + name;
     EXPECT_THROW(runProblem(options), ConfigError) << name;
   }

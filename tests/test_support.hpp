@@ -2,10 +2,12 @@
 // problem's run options through the library.
 #pragma once
 
+#include <hdf5.h>
 #include <sys/wait.h>
 
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -54,6 +56,27 @@ inline std::string readFile(const std::string& path) {
   std::stringstream text;
   text << in.rdbuf();
   return text.str();
+}
+
+// Flips bit `bit` of the byte at `offset` of file `path`, as a disk might.
+inline void flipBit(const std::string& path, std::uint64_t offset, int bit) {
+  std::fstream file(path, std::ios::in | std::ios::out | std::ios::binary);
+  file.seekg(std::streamoff(offset));
+  char byte = 0;
+  file.get(byte);
+  file.seekp(std::streamoff(offset));
+  file.put(char(byte ^ (1 << bit)));
+}
+
+// Where value `index` of an HDF5 dataset of doubles (`name`, a path in the
+// file) lies in the file: the dataset's contiguous data, 8 bytes a value.
+inline std::uint64_t valueOffset(const std::string& path, const char* name, std::uint64_t index) {
+  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  const hid_t dataset = H5Dopen2(file, name, H5P_DEFAULT);
+  const haddr_t offset = H5Dget_offset(dataset);
+  H5Dclose(dataset);
+  H5Fclose(file);
+  return offset == HADDR_UNDEF ? 0 : offset + 8 * index;
 }
 
 // A fresh scratch directory for one test.

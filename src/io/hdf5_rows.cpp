@@ -1,11 +1,17 @@
 #include "hdf5_rows.hpp"
 
+#include <fcntl.h>
 #include <mpi.h>
+#include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
 #include <stdexcept>
 #include <vector>
 
 #include "../parallel.hpp"
+#include "checksum.hpp"
 
 namespace lagremap::io {
 
@@ -28,16 +34,94 @@ std::string hdf5ErrorDetail() {
   };
   H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, walker, &detail);
   H5Eclear2(H5E_DEFAULT);
+  // The POSIX driver describes a failed read or write by its time, buffer,
+  // sizes and offsets, and the system's message, which is what a user can
+  // act on ("file write failed: No space left on device").
+  const std::string system_message = "error message = '";
+  const auto quoted = detail.find(system_message);
+  if (quoted != std::string::npos) {
+    const auto start = quoted + system_message.size();
+    detail = detail.substr(0, detail.find(':')) + ": " +
+             detail.substr(start, detail.find('\'', start) - start);
+  }
   for (char& c : detail)
     if (c == '\n' || c == '\r') c = ' ';
   return detail;
 }
 
-void failHdf5(const std::string& what, const std::string& file) {
+namespace {
+std::string failureMessage(const std::string& what, const std::string& file) {
   std::string message = "HDF5 failure (" + what + ") on '" + file + "'";
   const std::string detail = hdf5ErrorDetail();
   if (!detail.empty()) message += ": " + detail;
-  throw std::runtime_error(message);
+  return message;
+}
+
+// Throws on every rank if `status` is a failure on any: a transfer that
+// failed on some ranks only (theirs reached a full disk) would otherwise
+// leave the others waiting for them in the next collective call.
+void agreeOn(herr_t status, const std::string& what, const std::string& file) {
+  const std::string error = parallel::firstMessage(status < 0 ? failureMessage(what, file) : "");
+  if (!error.empty()) throw parallel::AgreedError(error);
+}
+}  // namespace
+
+void failHdf5(const std::string& what, const std::string& file) {
+  throw std::runtime_error(failureMessage(what, file));
+}
+
+namespace {
+// What HDF5 writes when it creates a file (the superblock) or closes it (the
+// metadata, some hundred bytes per dataset and attribute, and the raw data
+// it holds back, a sieve buffer of 64 KiB by default): a megabyte is room
+// to spare for either.
+constexpr off_t kRoom = off_t(1) << 20;
+}  // namespace
+
+OutputFile::OutputFile(const std::string& path, hid_t fapl) : path_(path), room_(path + ".room") {
+  // Room for the create and for the close; the first half goes back at once.
+  std::string error;
+  if (parallel::isRoot()) {
+    const int fd = ::open(room_.c_str(), O_CREAT | O_WRONLY | O_TRUNC, 0644);
+    int code = fd < 0 ? errno : posix_fallocate(fd, 0, 2 * kRoom);
+    if (code == 0 && ::ftruncate(fd, kRoom) != 0) code = errno;
+    if (fd >= 0) ::close(fd);
+    if (code != 0) {
+      error = "cannot write '" + path + "': " + std::strerror(code);
+      releaseRoom();
+    }
+  }
+  error = parallel::firstMessage(error);
+  if (!error.empty()) throw std::runtime_error(error);
+  id_ = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
+  if (id_ < 0) {
+    releaseRoom();
+    failHdf5("create", path);
+  }
+}
+
+void OutputFile::releaseRoom() {
+  if (!parallel::isRoot()) return;
+  std::error_code ignored;
+  std::filesystem::remove(room_, ignored);
+}
+
+void OutputFile::close() {
+  releaseRoom();
+  const hid_t id = id_;
+  id_ = -1;
+  check(H5Fclose(id), "close", path_);
+}
+
+OutputFile::~OutputFile() {
+  if (id_ < 0) return;
+  // The room and the file's own space (it goes anyway) for what the close writes.
+  releaseRoom();
+  std::error_code ignored;
+  std::filesystem::resize_file(path_, 0, ignored);
+  H5Fclose(id_);
+  H5Eclear2(H5E_DEFAULT);
+  std::filesystem::remove(path_, ignored);
 }
 
 namespace {
@@ -129,8 +213,8 @@ void writeRows(hid_t loc, const std::string& name, hid_t file_type, hid_t mem_ty
   Handle memory_space(check(H5Screate_simple(rank, local_dims, nullptr), "H5Screate_simple", file),
                       H5Sclose);
   if (selection.local_rows == 0) check(H5Sselect_none(memory_space.get()), "H5Sselect_none", file);
-  check(H5Dwrite(dataset.get(), mem_type, memory_space.get(), file_space.get(), dxpl, data),
-        ("write dataset " + name).c_str(), file);
+  agreeOn(H5Dwrite(dataset.get(), mem_type, memory_space.get(), file_space.get(), dxpl, data),
+          "write dataset " + name, file);
 }
 
 void readRows(hid_t loc, const std::string& name, hid_t mem_type, const RowSelection& selection,
@@ -156,8 +240,8 @@ void readRows(hid_t loc, const std::string& name, hid_t mem_type, const RowSelec
   Handle memory_space(check(H5Screate_simple(rank, local_dims, nullptr), "H5Screate_simple", file),
                       H5Sclose);
   if (selection.local_rows == 0) check(H5Sselect_none(memory_space.get()), "H5Sselect_none", file);
-  check(H5Dread(dataset.get(), mem_type, memory_space.get(), file_space.get(), dxpl, data),
-        ("read dataset " + name).c_str(), file);
+  agreeOn(H5Dread(dataset.get(), mem_type, memory_space.get(), file_space.get(), dxpl, data),
+          "read dataset " + name, file);
 }
 
 void writeScalarAttribute(hid_t loc, const char* name, double value, const std::string& file) {
@@ -203,6 +287,53 @@ std::string readTextAttribute(hid_t loc, const char* name, const std::string& fi
   std::string value(H5Tget_size(type.get()), '\0');
   check(H5Aread(attribute.get(), type.get(), value.data()), "read attribute", file);
   return value.substr(0, value.find('\0'));
+}
+
+void writeWordAttribute(hid_t loc, const char* name, std::uint64_t value, const std::string& file) {
+  Handle space(check(H5Screate(H5S_SCALAR), "H5Screate", file), H5Sclose);
+  Handle attribute(
+      check(H5Acreate2(loc, name, H5T_STD_U64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT),
+            "create attribute", file),
+      H5Aclose);
+  check(H5Awrite(attribute.get(), H5T_NATIVE_UINT64, &value), "write attribute", file);
+}
+
+std::uint64_t readWordAttribute(hid_t loc, const char* name, const std::string& file) {
+  if (H5Aexists(loc, name) <= 0) {
+    throw std::runtime_error("'" + file + "' has no attribute '" + std::string(name) + "'");
+  }
+  Handle attribute(check(H5Aopen(loc, name, H5P_DEFAULT), "open attribute", file), H5Aclose);
+  std::uint64_t value = 0;
+  check(H5Aread(attribute.get(), H5T_NATIVE_UINT64, &value), "read attribute", file);
+  return value;
+}
+
+std::uint64_t attributesHash(hid_t loc, const char* except, const std::string& file) {
+  std::vector<std::string> names;
+  auto collect = [](hid_t, const char* name, const H5A_info_t*, void* out) -> herr_t {
+    static_cast<std::vector<std::string>*>(out)->push_back(name);
+    return 0;
+  };
+  check(H5Aiterate2(loc, H5_INDEX_NAME, H5_ITER_INC, nullptr, collect, &names), "list attributes",
+        file);
+  WordHash hash;
+  for (const std::string& name : names) {
+    if (name == except) continue;
+    Handle attribute(check(H5Aopen(loc, name.c_str(), H5P_DEFAULT), "open attribute", file),
+                     H5Aclose);
+    Handle type(check(H5Aget_type(attribute.get()), "H5Aget_type", file), H5Tclose);
+    // The type's description too: the same bytes read as another type are another value.
+    std::size_t type_size = 0;
+    check(H5Tencode(type.get(), nullptr, &type_size), "H5Tencode", file);
+    std::vector<unsigned char> bytes(type_size);
+    check(H5Tencode(type.get(), bytes.data(), &type_size), "H5Tencode", file);
+    hash.addBytes(name.data(), name.size());
+    hash.addBytes(bytes.data(), bytes.size());
+    bytes.assign(H5Aget_storage_size(attribute.get()), 0);
+    check(H5Aread(attribute.get(), type.get(), bytes.data()), "read attribute", file);
+    hash.addBytes(bytes.data(), bytes.size());
+  }
+  return hash.value();
 }
 
 }  // namespace lagremap::io

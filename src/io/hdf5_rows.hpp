@@ -57,6 +57,32 @@ class Handle {
   Closer closer_;
 };
 
+// A new file every rank writes (collective create and close) that is closed
+// cleanly whatever fails, a full disk above all. HDF5 1.10 writes metadata
+// when it closes a file, and a close that fails (its flush, once failed,
+// cannot be retried) leaves the file open in the library, whose clean-up at
+// exit then fails again: an error dump, "infinite loop closing library" or
+// a crash. So the file comes with a reserve of disk space, `<path>.room`,
+// given back just before the close. On a failure, the destructor gives it
+// back with the file's own space, closes the file and removes it.
+class OutputFile {
+ public:
+  // Reserves the room and creates (truncates) `path`; throws naming it if
+  // either cannot be done.
+  OutputFile(const std::string& path, hid_t fapl);
+  ~OutputFile();
+  OutputFile(const OutputFile&) = delete;
+  OutputFile& operator=(const OutputFile&) = delete;
+  hid_t get() const { return id_; }
+  // Closes the complete file; throws on a failure.
+  void close();
+
+ private:
+  void releaseRoom();
+  std::string path_, room_;
+  hid_t id_ = -1;
+};
+
 // File access for every rank: MPI-IO on MPI_COMM_WORLD when the run has
 // several ranks (collective open and metadata), the default driver otherwise.
 hid_t fileAccess(const std::string& file);
@@ -87,5 +113,12 @@ double readScalarAttribute(hid_t loc, const char* name, const std::string& file)
 void writeTextAttribute(hid_t loc, const char* name, const std::string& value,
                         const std::string& file);
 std::string readTextAttribute(hid_t loc, const char* name, const std::string& file);
+void writeWordAttribute(hid_t loc, const char* name, std::uint64_t value, const std::string& file);
+std::uint64_t readWordAttribute(hid_t loc, const char* name, const std::string& file);
+
+// Hash of every attribute of `loc` but `except`, each one's name and stored
+// bytes, in the order of their names: whatever attributes a writer adds are
+// covered without a list to keep. Collective where reading metadata is.
+std::uint64_t attributesHash(hid_t loc, const char* except, const std::string& file);
 
 }  // namespace lagremap::io

@@ -60,14 +60,7 @@ void write_snapshot_h5(const std::string& path, double time, const SnapshotMesh&
                        const std::vector<CellField>& fields) {
   Handle fapl(fileAccess(path), H5Pclose);
   Handle dxpl(transfer(path), H5Pclose);
-  const hid_t fid = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get());
-  if (fid < 0) {
-    std::string msg = "lagremap::io: cannot create HDF5 file '" + path + "'";
-    const std::string detail = hdf5ErrorDetail();
-    if (!detail.empty()) msg += ": " + detail;
-    throw std::runtime_error(msg);
-  }
-  Handle file(fid, H5Fclose);
+  OutputFile file(path, fapl.get());
   writeScalarAttribute(file.get(), "time", time, path);
   const RowSelection nodes{globalNodes(mesh), mesh.n_nodes, mesh.node_rows};
   const RowSelection cells{globalCells(mesh), mesh.n_cells, mesh.cell_rows};
@@ -106,7 +99,7 @@ void write_snapshot_h5(const std::string& path, double time, const SnapshotMesh&
                 dxpl.get(), path);
     }
   }
-  if (file.close() < 0) failHdf5("H5Fclose", path);
+  file.close();
 }
 
 // ---------------------------------------------------------------------------------------
@@ -293,7 +286,9 @@ void SnapshotSeries::resume(const std::vector<double>& times) {
   entries_.clear();
   for (std::size_t i = 0; i < times.size(); ++i) {
     // sizes and fields are those of the next write (a run's snapshots all match)
-    entries_.push_back({times[i], series_name_ + index_suffix(int(i)) + ".h5", -1, -1, {}});
+    Entry entry{times[i], series_name_ + index_suffix(int(i)) + ".h5", -1, -1, {}};
+    entry.listed = fs::exists(fs::path(directory_) / entry.h5_name);
+    entries_.push_back(std::move(entry));
   }
 }
 
@@ -340,25 +335,30 @@ std::string SnapshotSeries::write(double time, const SnapshotMesh& mesh,
     }
   }
 
-  try {
-    if (!parallel::isRoot()) {  // the light data is rank 0's
-      entries_.push_back(std::move(entry));
-      return h5_path;
+  // The light data is rank 0's; its failure (a full disk) is every rank's.
+  std::string error;
+  if (parallel::isRoot()) {
+    try {
+      write_text_file_atomically(xmf_path,
+                                 std::string(kXdmfHeader) + grid_xml(entry, "    ") + kXdmfFooter);
+      std::string series = kXdmfHeader;
+      series += "    <Grid Name=\"" + xml_escape(series_name_) +
+                "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+      for (const Entry& e : entries_) {
+        if (e.listed) series += grid_xml(e, "      ");
+      }
+      series += grid_xml(entry, "      ");
+      series += "    </Grid>\n";
+      series += kXdmfFooter;
+      write_text_file_atomically(series_xmf_path(), series);
+    } catch (const std::exception& failure) {
+      error = failure.what();
     }
-    write_text_file_atomically(xmf_path,
-                               std::string(kXdmfHeader) + grid_xml(entry, "    ") + kXdmfFooter);
-
-    std::string series = kXdmfHeader;
-    series += "    <Grid Name=\"" + xml_escape(series_name_) +
-              "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
-    for (const Entry& e : entries_) series += grid_xml(e, "      ");
-    series += grid_xml(entry, "      ");
-    series += "    </Grid>\n";
-    series += kXdmfFooter;
-    write_text_file_atomically(series_xmf_path(), series);
-  } catch (...) {
+  }
+  error = parallel::firstMessage(error);
+  if (!error.empty()) {
     remove_outputs();
-    throw;
+    throw parallel::AgreedError(error);
   }
 
   entries_.push_back(std::move(entry));

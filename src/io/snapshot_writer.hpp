@@ -6,9 +6,9 @@
 //                                      order) /fields/<name>      float64 [n_cells] or [n_cells,
 //                                      components] attribute "time" (float64) on the root group
 //   <series>_<NNNNN>.xmf  light data describing that one snapshot
-//   <series>.xmf          temporal collection of every snapshot written so far
-//                         (rewritten atomically after each snapshot; open this one in
-//                         ParaView to get an animated series)
+//   <series>.xmf          temporal collection of every snapshot written so far in the
+//                         directory (rewritten atomically after each snapshot; open this
+//                         one in ParaView to get an animated series)
 // The .xmf files reference the .h5 files by relative file name, so the directory can be
 // moved or copied as a whole.
 //
@@ -90,9 +90,11 @@ class SnapshotSeries {
   // Number of snapshots successfully written so far.
   int count() const;
 
-  // Continues a series whose first snapshots (at `times`) are already in the
-  // directory (a restarted run): the next write gets the next index, and the
-  // series .xmf lists the earlier files too, with the same mesh sizes and fields.
+  // Continues a series whose first snapshots were taken at `times` (a
+  // restarted run): the next write gets the next index, and the series .xmf
+  // lists the earlier files found in the directory, with the same mesh sizes
+  // and fields. A run restarted into another directory finds none there: its
+  // series lists its own files only, and opens there.
   void resume(const std::vector<double>& times);
   const std::vector<double> times() const;
 
@@ -112,6 +114,7 @@ class SnapshotSeries {
     std::int64_t n_nodes;
     std::int64_t n_cells;
     std::vector<FieldInfo> fields;
+    bool listed = true;  // in the series .xmf (false: an earlier file not in directory_)
   };
 
   std::string directory_;
