@@ -53,4 +53,8 @@ ShellStop howellBallStop(double rho, double yield_stress, double ri, double ro, 
   return stop;
 }
 
+double elasticRingingSpeed(double rho, double yield_stress, double longitudinal_sound_speed) {
+  return yield_stress / (rho * longitudinal_sound_speed);
+}
+
 }  // namespace lagremap

@@ -29,4 +29,12 @@ ShellStop howellBallStop(double rho, double yield_stress, double ri, double ro, 
 // The plastic work W(a) of the collapse from Ri to a (per unit length).
 double howellBallWork(double yield_stress, double ri, double ro, double a);
 
+// The speed at which a real (elastic-plastic) shell rings after the
+// rigid-plastic stop: it stops with its hoop stress at yield and unloads
+// elastically, and an elastic wave that changes the stress by Y carries the
+// particle velocity Y / (rho c_L), c_L = sqrt(a0^2 + 4 mu / (3 rho)) the
+// longitudinal sound speed. The stopped shell's inner surface moves with
+// velocities of this order, not of V0 (beryllium: 10.8 m/s, whatever V0).
+double elasticRingingSpeed(double rho, double yield_stress, double longitudinal_sound_speed);
+
 }  // namespace lagremap
