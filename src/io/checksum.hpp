@@ -1,4 +1,4 @@
-// Checksums of what a checkpoint holds (DESIGN §6): a flipped bit on disk
+// Checksums of what a checkpoint holds (docs/running.md §5): a flipped bit on disk
 // must not restart a run with other fields. HDF5's own Fletcher32 filter
 // would need chunked datasets, and it leaves the attributes (the loop's
 // counters) unprotected; these hashes cover both and cost one 64-bit
