@@ -305,8 +305,7 @@ ShellStop expectedStop(const Config& config) {
 // 10.5 m/s, 0.035 V0, and a fixed 1% of V0 failed a correct run.
 double stoppedShellSpeedBound(const Config& config) {
   const MaterialParams be = readHypoSolid(config, "be", "Be-hypo");
-  const double longitudinal =
-      std::sqrt(be.a0 * be.a0 + (4.0 / 3.0) * shearModulus(be) / be.rho0);
+  const double longitudinal = std::sqrt(be.a0 * be.a0 + (4.0 / 3.0) * shearModulus(be) / be.rho0);
   return 2.0 * elasticRingingSpeed(be.rho0, be.yield_stress, longitudinal);
 }
 

@@ -106,12 +106,10 @@ TEST(Validation, ShellStopsWhereHowellBallSayAtEverySpeed) {
   // 500 m/s on the 30 x 180 mesh: the shell closes to half its radius, and
   // the 15 x 90 one stops it 3.1 mm early (0.9 mm at 30 x 180; 1.2 and 0.25
   // mm at 417.1 m/s), outside the 2 mm of the radii checks
-  for (const auto& [v0, scale] : {std::pair<const char*, double>{"250", 1.0},
-                                  {"300", 1.0},
-                                  {"417.1", 1.0},
-                                  {"500", 2.0}}) {
-    const RunResult result = runProblem(testing::problemOptions(
-        "shell", {std::string("shell.v0=") + v0, "t_end=1.6e-4"}, scale));
+  for (const auto& [v0, scale] :
+       {std::pair<const char*, double>{"250", 1.0}, {"300", 1.0}, {"417.1", 1.0}, {"500", 2.0}}) {
+    const RunResult result = runProblem(
+        testing::problemOptions("shell", {std::string("shell.v0=") + v0, "t_end=1.6e-4"}, scale));
     ASSERT_FALSE(result.failed) << result.failure;
     for (const Check& check : result.checks) {
       std::printf("shell lagrange V0 = %s: %-22s %.6g (reference %.6g, tolerance %.3g)\n", v0,
@@ -124,12 +122,12 @@ TEST(Validation, ShellStopsWhereHowellBallSayAtEverySpeed) {
       runProblem(testing::problemOptions("shell", {"shell.v0=250"}, 0.5, "remap"));
   ASSERT_FALSE(remapped.failed) << remapped.failure;
   const Check& remap_speed = shellCheck(remapped, "final_inward_speed");
-  std::printf("shell remap V0 = 250: final_inward_speed %.6g (tolerance %.3g)\n",
-              remap_speed.value, remap_speed.tolerance);
+  std::printf("shell remap V0 = 250: final_inward_speed %.6g (tolerance %.3g)\n", remap_speed.value,
+              remap_speed.tolerance);
   EXPECT_TRUE(remap_speed.counts() && remap_speed.pass());
 
-  const RunResult soft = runProblem(testing::problemOptions(
-      "shell", {"shell.v0=300", "be.mu=1.519e8", "t_end=1.6e-4"}));
+  const RunResult soft = runProblem(
+      testing::problemOptions("shell", {"shell.v0=300", "be.mu=1.519e8", "t_end=1.6e-4"}));
   ASSERT_FALSE(soft.failed) << soft.failure;
   const Check& soft_speed = shellCheck(soft, "final_inward_speed");
   std::printf("shell too soft to stop: final_inward_speed %.6g (tolerance %.3g)\n",
