@@ -1,0 +1,99 @@
+#!/usr/bin/python3
+"""Per-kernel GPU resources from ptxas's verbose report (nvcc -Xptxas=-v).
+
+Reads the compiler output on stdin (or from the files named) and prints, for
+each lagremap kernel (the function whose lambda or functor Kokkos launches),
+its registers per thread, stack frame and spill stores / loads in bytes; the
+heaviest instance first where a kernel is compiled several times (template
+instances, several translation units). Kokkos' own kernels (view copies,
+fills) are left out.
+
+  perf/gpu_resources.sh [ARCH]   compiles the kernels' translation units and
+                                 pipes the report here (docs/performance.md)
+"""
+import re
+import subprocess
+import sys
+
+ENTRY = re.compile(r"Compiling entry function '([^']+)' for '(sm_\d+)'")
+FRAME = re.compile(r"(\d+) bytes stack frame, (\d+) bytes spill stores, (\d+) bytes spill loads")
+USED = re.compile(r"Used (\d+) registers")
+# what a launch runs: the first template argument of Kokkos' ParallelFor /
+# Reduce / Scan (through the reduction's functor adapter)
+LAUNCHED = re.compile(r"Parallel(?:For|Reduce|Scan)<(?:Kokkos::Impl::CudaFunctorAdapter<)?")
+# ours: a lambda of a lagremap function, or a lagremap functor
+LAMBDA_OF = re.compile(r"lagremap::(?:\w+::)*(\w+)\(")
+FUNCTOR = re.compile(r"lagremap::(?:\w+::)*(\w+)")
+
+
+def demangle(names):
+    out = subprocess.run(["c++filt"], input="\n".join(names), capture_output=True, text=True,
+                         check=True).stdout
+    return out.splitlines()
+
+
+def kernel_label(demangled):
+    launched = LAUNCHED.search(demangled)
+    if not launched:
+        return None
+    functor = demangled[launched.end():]
+    if not functor.startswith("lagremap::"):
+        return None  # Kokkos' own (a view copy or fill), whatever its value type
+    lambda_of = LAMBDA_OF.match(functor)  # a name followed by "(": a function's lambda
+    return (lambda_of or FUNCTOR.match(functor)).group(1)
+
+
+def parse(lines):
+    """(mangled entry, arch, registers, stack, spill stores, spill loads) per kernel."""
+    kernels, current = [], None
+    for line in lines:
+        entry = ENTRY.search(line)
+        if entry:
+            current = {"name": entry.group(1), "arch": entry.group(2), "stack": 0,
+                       "spill_st": 0, "spill_ld": 0, "registers": 0}
+            kernels.append(current)
+            continue
+        if current is None:
+            continue
+        frame = FRAME.search(line)
+        if frame:
+            current["stack"], current["spill_st"], current["spill_ld"] = map(int, frame.groups())
+        used = USED.search(line)
+        if used:
+            current["registers"] = int(used.group(1))
+            current = None  # "Used" closes an entry's report
+    return kernels
+
+
+def main():
+    lines = []
+    for path in sys.argv[1:] or ["-"]:
+        lines += (sys.stdin if path == "-" else open(path, encoding="utf-8")).read().splitlines()
+    kernels = parse(lines)
+    if not kernels:
+        sys.exit("gpu_resources: no 'Compiling entry function' in the input (was -Xptxas=-v given?)")
+    for kernel, name in zip(kernels, demangle([k["name"] for k in kernels])):
+        kernel["label"] = kernel_label(name)
+    ours = [k for k in kernels if k["label"]]
+    by_label = {}
+    for k in ours:
+        by_label.setdefault(k["label"], []).append(k)
+    rows = []
+    for label, instances in by_label.items():
+        instances.sort(key=lambda k: (k["spill_st"] + k["spill_ld"], k["stack"], k["registers"]),
+                       reverse=True)
+        rows.append((label, instances))
+    rows.sort(key=lambda row: (row[1][0]["spill_st"] + row[1][0]["spill_ld"], row[1][0]["registers"],
+                               row[1][0]["stack"]), reverse=True)
+    print(f"{'kernel':<34} {'inst':>4} {'registers':>9} {'stack [B]':>9} {'spill st/ld [B]':>16}"
+          f"  ({kernels[0]['arch']})")
+    for label, instances in rows:
+        k = instances[0]
+        print(f"{label:<34} {len(instances):>4} {k['registers']:>9} {k['stack']:>9} "
+              f"{str(k['spill_st']) + ' / ' + str(k['spill_ld']):>16}")
+    spilling = sum(1 for _, inst in rows if inst[0]["spill_st"] + inst[0]["spill_ld"] > 0)
+    print(f"{len(rows)} lagremap kernels ({len(ours)} instances), {spilling} spill")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Registers, stack frame and spills per lagremap kernel on the GPU, without a
+# GPU: compiles the translation units that launch kernels with the CUDA
+# Kokkos prefix's nvcc_wrapper and -Xptxas=-v, and tabulates ptxas's report
+# per kernel (perf/gpu_resources.py; docs/performance.md).
+#   perf/gpu_resources.sh [ARCH] [SOURCE...]
+#     ARCH: the sm_ number (default: the prefix's, LAGREMAP_CUDA_ARCH or 90)
+#     SOURCE: translation units (default: every src/ and problems/ source
+#             that launches a kernel)
+# Needs scripts/setup.sh --backend cuda first (or Kokkos_ROOT naming a CUDA
+# Kokkos prefix); about 25 s per translation unit on 2 cores.
+set -euo pipefail
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+arch=${1:-${LAGREMAP_CUDA_ARCH:-90}}
+shift || true
+kokkos_root=${Kokkos_ROOT:-$(cat "$here/build-cuda/kokkos-root.txt" 2>/dev/null || true)}
+wrapper="$kokkos_root/bin/nvcc_wrapper"
+[ -x "$wrapper" ] || {
+  echo "gpu_resources: no CUDA Kokkos prefix (run scripts/setup.sh --backend cuda and scripts/build.sh --backend cuda, or set Kokkos_ROOT)" >&2
+  exit 2
+}
+if [ $# -gt 0 ]; then
+  sources=("$@")
+else
+  mapfile -t sources < <(cd "$here" && grep -l -E "parallel_|kernels/|_step\.hpp" src/*.cpp problems/*.cpp)
+fi
+mpi_includes=$(mpicxx --showme:incdirs 2>/dev/null | sed 's/\([^ ]*\)/-isystem \1/g' || true)
+report=$(mktemp)
+trap 'rm -f "$report"' EXIT
+for source in "${sources[@]}"; do
+  echo "gpu_resources: $source" >&2
+  # the project's CUDA flags (CMakeLists.txt), the arch asked for, ptxas verbose
+  # shellcheck disable=SC2086
+  "$wrapper" -DKOKKOS_DEPENDENCE -I"$here" -isystem "$kokkos_root/include" $mpi_includes \
+    -isystem /usr/include/hdf5/openmpi -O3 -DNDEBUG -fno-math-errno -ffp-contract=off \
+    --fmad=false -expt-extended-lambda -arch="sm_$arch" -std=c++17 -Xptxas=-v \
+    -c "$here/$source" -o /dev/null >>"$report" 2>&1 ||
+    { echo "gpu_resources: $source did not compile:" >&2; tail -20 "$report" >&2; exit 1; }
+done
+/usr/bin/python3 "$here/perf/gpu_resources.py" "$report"
