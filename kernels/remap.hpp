@@ -514,15 +514,14 @@ KOKKOS_FORCEINLINE_FUNCTION void cleanUpMaterials(const RemapLayout& layout,
     // A trace (or a round-off negative mass) is not a material state; but a
     // trace whose negative energy (a solid fragment in tension) would take a
     // gas below zero stays a material until it can.
-    const bool takes_gas_below_zero =
-        internal[k] < 0.0 && internal[main_material] + internal[k] < 0.0 &&
-        isGasFamily(materials(main_material)) && alpha[k] > 0.0;
+    const bool takes_gas_below_zero = internal[k] < 0.0 &&
+                                      internal[main_material] + internal[k] < 0.0 &&
+                                      isGasFamily(materials(main_material)) && alpha[k] > 0.0;
     // A trace joins only once its mass is nothing to the material taking it:
     // an aluminium trace at alpha_floor holds 3e-7 of a gas's mass at 1
     // kg/m^3, which raised the gas's density by as much (docs/method.md §5.7).
     const bool negligible_mass = mass[k] <= kTraceMassJoined * mass[main_material];
-    if ((alpha[k] <= alpha_floor && negligible_mass && !takes_gas_below_zero) ||
-        !(mass[k] > 0.0)) {
+    if ((alpha[k] <= alpha_floor && negligible_mass && !takes_gas_below_zero) || !(mass[k] > 0.0)) {
       // A round-off negative mass goes to the heaviest material, which can
       // afford it: the main material by volume may be a near-vacuum gas
       // lighter than the deficit (the `ball` at --scale 0.5 took its gas to a

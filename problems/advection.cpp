@@ -100,8 +100,8 @@ AdvectionCase readAdvection(const Config& config, bool two_d) {
     a.x = config.real("body.x");
     a.y = config.real("body.y");
     a.radius = config.real("body.radius");
-    if (!(a.radius > 0 && a.x - a.radius > 0 && a.x + a.radius < a.length &&
-          a.y - a.radius > 0 && a.y + a.radius < a.length)) {
+    if (!(a.radius > 0 && a.x - a.radius > 0 && a.x + a.radius < a.length && a.y - a.radius > 0 &&
+          a.y + a.radius < a.length)) {
       throw ConfigError(name + ": the disc must lie inside the domain");
     }
   } else {
@@ -123,10 +123,10 @@ AdvectionCase readAdvection(const Config& config, bool two_d) {
   const char* sides[4] = {"xmin", "xmax", "ymin", "ymax"};
   for (int side = 0; side < (two_d ? 4 : 2); ++side) {
     const std::string prefix = std::string("bc.") + sides[side];
-    if (config.text(prefix) != "traction" ||
-        config.real(prefix + ".sigma_xx") != -a.p0 || config.real(prefix + ".sigma_yy") != -a.p0 ||
-        config.real(prefix + ".sigma_zz") != -a.p0 || config.real(prefix + ".sigma_xy") != 0.0 ||
-        config.real(prefix + ".sigma_yz") != 0.0 || config.real(prefix + ".sigma_xz") != 0.0) {
+    if (config.text(prefix) != "traction" || config.real(prefix + ".sigma_xx") != -a.p0 ||
+        config.real(prefix + ".sigma_yy") != -a.p0 || config.real(prefix + ".sigma_zz") != -a.p0 ||
+        config.real(prefix + ".sigma_xy") != 0.0 || config.real(prefix + ".sigma_yz") != 0.0 ||
+        config.real(prefix + ".sigma_xz") != 0.0) {
       throw ConfigError(name + ": " + prefix +
                         " must be a traction of the gas pressure (sigma = -gas.p I)");
     }
@@ -269,12 +269,20 @@ extern const Problem kAdvectionProblem = {
     "advection",
     "aluminium disc and gas translating together through the fixed mesh (remap only): "
     "uniform p and v, each material's density kept",
-    declareAdvection2D, setupAdvection2D, finishAdvection2D, bodyCentroidX, "body_centroid_x"};
+    declareAdvection2D,
+    setupAdvection2D,
+    finishAdvection2D,
+    bodyCentroidX,
+    "body_centroid_x"};
 
 extern const Problem kAdvection1DProblem = {
     "advection1d",
     "aluminium slab and gas translating together along a row of cells (remap only): uniform p "
     "and v, each material's density kept",
-    declareAdvection1D, setupAdvection1D, finishAdvection1D, bodyCentroidX, "body_centroid_x"};
+    declareAdvection1D,
+    setupAdvection1D,
+    finishAdvection1D,
+    bodyCentroidX,
+    "body_centroid_x"};
 
 }  // namespace lagremap

@@ -30,11 +30,10 @@ extern const Problem kAirHeliumProblem;
 extern const Problem kWaterAirProblem;
 
 const std::vector<Problem>& problemRegistry() {
-  static const std::vector<Problem> problems = {kSodProblem,    kSedovProblem, kWilkinsProblem,
-                                                kTaylorProblem, kPileProblem,  kBeamProblem,
-                                                kShellProblem,  kBallProblem,  kAdvectionProblem,
-                                                kAdvection1DProblem, kAirHeliumProblem,
-                                                kWaterAirProblem};
+  static const std::vector<Problem> problems = {
+      kSodProblem,       kSedovProblem,       kWilkinsProblem,   kTaylorProblem,
+      kPileProblem,      kBeamProblem,        kShellProblem,     kBallProblem,
+      kAdvectionProblem, kAdvection1DProblem, kAirHeliumProblem, kWaterAirProblem};
   return problems;
 }
 

@@ -42,12 +42,13 @@ struct TubeFluid {
 };
 
 // One side's keys: <side>.eos, gamma, p_inf, rho, p, vx.
-void declareFluidKeys(Config& config, const std::string& side, const std::string& eos,
-                      double gamma, double p_inf, const GasState& state) {
+void declareFluidKeys(Config& config, const std::string& side, const std::string& eos, double gamma,
+                      double p_inf, const GasState& state) {
   config.addChoice(side + ".eos", eos, {"ideal_gas", "stiffened_gas"},
                    "equation of state of the fluid " + side + " of the diaphragm");
   config.addReal(side + ".gamma", gamma, "-", "ratio of specific heats (" + side + ")");
-  config.addReal(side + ".p_inf", p_inf, "Pa", "stiffened gas: pressure shift p_inf (" + side + ")");
+  config.addReal(side + ".p_inf", p_inf, "Pa",
+                 "stiffened gas: pressure shift p_inf (" + side + ")");
   config.addReal(side + ".rho", state.rho, "kg/m^3", "density (" + side + ")");
   config.addReal(side + ".p", state.p, "Pa", "pressure (" + side + ")");
   config.addReal(side + ".vx", state.u, "m/s", "velocity (" + side + ")");
@@ -60,7 +61,8 @@ TubeFluid readFluid(const Config& config, const std::string& side, const std::st
   fluid.material.gamma = config.real(side + ".gamma");
   fluid.material.p_inf = stiffened ? config.real(side + ".p_inf") : 0.0;
   fluid.state = {config.real(side + ".rho"), config.real(side + ".vx"), config.real(side + ".p")};
-  if (!(fluid.material.gamma > 1.0)) throw ConfigError(problem + ": " + side + ".gamma must be > 1");
+  if (!(fluid.material.gamma > 1.0))
+    throw ConfigError(problem + ": " + side + ".gamma must be > 1");
   if (stiffened && !(fluid.material.p_inf >= 0.0)) {
     throw ConfigError(problem + ": " + side + ".p_inf must be >= 0");
   }
@@ -82,12 +84,12 @@ struct TubeDefaults {
   long cells;
 };
 
-constexpr TubeDefaults kAirHelium{"air_helium", 0.2,  0.5, 1.0, "ideal_gas", 1.4, 0.0,
-                                  {1.0, 0.0, 1.0},  "ideal_gas", 5.0 / 3.0, 0.0,
-                                  {0.125, 0.0, 0.1}, 200};
-constexpr TubeDefaults kWaterAir{"water_air",        229e-6, 0.7,  1.0, "stiffened_gas", 4.4, 6e8,
-                                 {1000.0, 0.0, 1e9}, "ideal_gas", 1.4, 0.0,
-                                 {50.0, 0.0, 1e5},   400};
+constexpr TubeDefaults kAirHelium{
+    "air_helium",    0.2,         0.5,       1.0, "ideal_gas",       1.4, 0.0,
+    {1.0, 0.0, 1.0}, "ideal_gas", 5.0 / 3.0, 0.0, {0.125, 0.0, 0.1}, 200};
+constexpr TubeDefaults kWaterAir{
+    "water_air",        229e-6,      0.7, 1.0, "stiffened_gas",  4.4, 6e8,
+    {1000.0, 0.0, 1e9}, "ideal_gas", 1.4, 0.0, {50.0, 0.0, 1e5}, 400};
 
 void declareTube(Config& config, const TubeDefaults& d) {
   refuseLagrangeMode(config, d.name,
@@ -97,7 +99,8 @@ void declareTube(Config& config, const TubeDefaults& d) {
   declareFluidKeys(config, "right", d.right_eos, d.right_gamma, d.right_p_inf, d.right);
   config.addReal("geometry.length", d.length, "m", "tube length (from x = 0)");
   config.addReal("geometry.x_interface", d.x_interface, "m", "initial position of the diaphragm");
-  config.addCellLength("geometry.width", d.length / double(d.cells), "extent of the bar in y and z");
+  config.addCellLength("geometry.width", d.length / double(d.cells),
+                       "extent of the bar in y and z");
   declareMeshKeys(config, d.cells, 1, 1);
   declareBoundaryKeys(config, {"wall", "wall", "symmetry", "symmetry", "symmetry", "symmetry"});
   config.addReal("check.star_tolerance", 0.01, "-",
@@ -128,8 +131,7 @@ ProblemSetup setupTube(const Config& config, const char* name) {
   regions.material_at = [=](const Vec3& x) { return x.x < x0 ? kLeft : kRight; };
   regions.rho = {left.state.rho, right.state.rho};
   regions.e = {stiffenedGasInternalEnergy(left.state, left.material.gamma, left.material.p_inf),
-               stiffenedGasInternalEnergy(right.state, right.material.gamma,
-                                          right.material.p_inf)};
+               stiffenedGasInternalEnergy(right.state, right.material.gamma, right.material.p_inf)};
   regions.velocity = [=](int material, const Vec3&) {
     return Vec3{material == kLeft ? left.state.u : right.state.u, 0, 0};
   };
@@ -155,8 +157,7 @@ double defaultTubeBound(double error_at_200, long nx, double length) {
 }
 
 std::vector<Check> finishTube(const Config& config, const FinalFields& fields,
-                              const std::string& out_dir, const char* name,
-                              double error_at_200) {
+                              const std::string& out_dir, const char* name, double error_at_200) {
   const TubeFluid left = readFluid(config, "left", name), right = readFluid(config, "right", name);
   const RiemannSolution exact =
       solveRiemann(left.state, right.state, left.material.gamma, right.material.gamma,
@@ -187,9 +188,9 @@ std::vector<Check> finishTube(const Config& config, const FinalFields& fields,
         gas_p_min = std::min(gas_p_min, fields.p_k(c, k));
       }
     }
-    row << fields.globalCell(c) << ' ' << x << ',' << fields.rho(c) << ',' << fields.v(c, 0)
-        << ',' << fields.p(c) << ',' << fields.alpha(c, kLeft) << ',' << ref.rho << ',' << ref.u
-        << ',' << ref.p << '\n';
+    row << fields.globalCell(c) << ' ' << x << ',' << fields.rho(c) << ',' << fields.v(c, 0) << ','
+        << fields.p(c) << ',' << fields.alpha(c, kLeft) << ',' << ref.rho << ',' << ref.u << ','
+        << ref.p << '\n';
   }
   if (fields.distributed) {
     std::vector<ExactSum> sums{l1, star_p, star_u, star_n};
@@ -211,8 +212,8 @@ std::vector<Check> finishTube(const Config& config, const FinalFields& fields,
   const double tolerance = config.real("check.star_tolerance");
   double bound = config.real("check.l1_density_bound");
   if (bound <= 0.0) {
-    bound = defaultTubeBound(error_at_200, config.integer("mesh.nx"),
-                             config.real("geometry.length"));
+    bound =
+        defaultTubeBound(error_at_200, config.integer("mesh.nx"), config.real("geometry.length"));
   }
   // (u* relative to the largest speed the problem sets, |u*| itself or a
   // sound speed's worth when the contact barely moves)
@@ -223,8 +224,8 @@ std::vector<Check> finishTube(const Config& config, const FinalFields& fields,
                     "against the exact p*"});
   checks.push_back({"contact_velocity", u_star, exact.u_star, tolerance * speed_scale,
                     "mean velocity of those cells against the exact u* (the contact's speed)"});
-  checks.push_back({"l1_density", l1.value(), 0.0, bound,
-                    "L1 norm of rho - rho_exact over the tube (kg/m^2)"});
+  checks.push_back(
+      {"l1_density", l1.value(), 0.0, bound, "L1 norm of rho - rho_exact over the tube (kg/m^2)"});
   checks.push_back({"gas_pressure_min", std::min(gas_p_min, 0.0), 0.0, 0.0,
                     "lowest material pressure of an ideal gas in any cell (above alpha_trace): "
                     "min(p, 0) must be 0"});
@@ -248,11 +249,23 @@ extern const Problem kAirHeliumProblem = {
     "air_helium",
     "two-gas shock tube (air gamma 1.4 | helium gamma 5/3, Sod's states), remap only, exact "
     "Riemann solution",
-    declareAirHelium, setupAirHelium, finishAirHelium, nullptr, nullptr, {}, kTubeMixedCells};
+    declareAirHelium,
+    setupAirHelium,
+    finishAirHelium,
+    nullptr,
+    nullptr,
+    {},
+    kTubeMixedCells};
 
 extern const Problem kWaterAirProblem = {
     "water_air",
     "water (stiffened gas) at 1 GPa against air: shock tube, remap only, exact Riemann solution",
-    declareWaterAir, setupWaterAir, finishWaterAir, nullptr, nullptr, {}, kTubeMixedCells};
+    declareWaterAir,
+    setupWaterAir,
+    finishWaterAir,
+    nullptr,
+    nullptr,
+    {},
+    kTubeMixedCells};
 
 }  // namespace lagremap

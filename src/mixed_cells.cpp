@@ -166,7 +166,8 @@ MixedCellReport measureMixedCells(const FinalFields& fields,
   for (Index c = 0; c < n_cells; ++c) {
     if (!fields.counts(c) || pure(c)) continue;
     ++report.impure_cells;
-    if (!pure_mixture.empty()) report.mixture_pressure_outliers += pure_mixture.outside(fields.p(c), 0.5);
+    if (!pure_mixture.empty())
+      report.mixture_pressure_outliers += pure_mixture.outside(fields.p(c), 0.5);
   }
   report.impure_cells = countOverRanks(report.impure_cells, distributed);
   report.mixture_pressure_outliers = countOverRanks(report.mixture_pressure_outliers, distributed);

@@ -21,13 +21,8 @@
 namespace lagremap {
 namespace {
 
+using testing::lineCount;
 using testing::runLagremap;
-
-int lineCount(const std::string& text) {
-  int lines = 0;
-  for (char ch : text) lines += ch == '\n';
-  return lines + (!text.empty() && text.back() != '\n');
-}
 
 // Sod at half resolution stopped at step 40 (exit code 3), which leaves its
 // checkpoint in `dir`/run; returns the command line that continues it.

@@ -14,13 +14,8 @@
 namespace lagremap {
 namespace {
 
+using testing::lineCount;
 using testing::runLagremap;
-
-int lineCount(const std::string& text) {
-  int lines = 0;
-  for (char ch : text) lines += ch == '\n';
-  return lines + (!text.empty() && text.back() != '\n');
-}
 
 struct BadInput {
   const char* args;

@@ -235,8 +235,8 @@ TEST(RemapProblems, AdvectionKeepsTheUniformStateWithBothClosures) {
     for (const auto& [problem, scale, t_end] :
          {std::tuple<const char*, double, const char*>{"advection1d", 1.0, "t_end=1e-3"},
           {"advection", 0.5, "t_end=1e-3"}}) {
-      const RunResult result = runAndCheckRemap(
-          problem, {std::string("mixture.closure=") + closure, t_end}, scale);
+      const RunResult result =
+          runAndCheckRemap(problem, {std::string("mixture.closure=") + closure, t_end}, scale);
       ASSERT_FALSE(result.failed) << problem << " " << closure;
       for (const Check& check : result.checks) {
         std::printf("%s %s: %s %.3g (tolerance %.3g)\n", problem, closure, check.name.c_str(),

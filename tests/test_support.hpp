@@ -26,6 +26,13 @@ struct CommandResult {
 
 // Runs `lagremap ARGS` in a shell; OMP_PROC_BIND is set so Kokkos prints no
 // advice on stderr and stderr holds only lagremap's own messages.
+// Lines of a program's output (a last line without its newline counts).
+inline int lineCount(const std::string& text) {
+  int lines = 0;
+  for (char ch : text) lines += ch == '\n';
+  return lines + (!text.empty() && text.back() != '\n');
+}
+
 inline CommandResult runLagremap(const std::string& args) {
   static int counter = 0;
   const std::string stem =
