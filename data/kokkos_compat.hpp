@@ -47,6 +47,14 @@ using Kokkos::Experimental::sqrt;
 #define LAGREMAP_UNROLL
 #endif
 
+// A loop kept rolled where unrolling would hold all its iterations' state at
+// once (the staged form's corner loop, kernels/geometry.hpp): device passes.
+#if defined(__CUDA_ARCH__) || defined(__HIP_DEVICE_COMPILE__)
+#define LAGREMAP_NO_UNROLL _Pragma("unroll 1")
+#else
+#define LAGREMAP_NO_UNROLL
+#endif
+
 // A loop over lanes (the 8 vertices of a hexahedron, structure of arrays)
 // whose iterations are independent: vectorised on CPUs (OpenMP simd, which
 // also lets the compiler turn a selection into a blend); device passes get

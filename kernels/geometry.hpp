@@ -7,6 +7,8 @@
 // to the most restrictive.
 #pragma once
 
+#include <type_traits>
+
 #include "../data/mesh.hpp"
 #include "../data/state.hpp"
 #include "constitutive.hpp"
@@ -14,6 +16,25 @@
 #include "time_step.hpp"
 
 namespace lagremap {
+
+// How the per-cell work of the geometry and of a stage's end is laid out
+// (docs/method.md §7.6), the same bits either way:
+// - Fused: a cell's whole geometry (hex::CellGeometry: its 8 corners' sums,
+//   85 doubles) in one sweep over its 24 triangles, kCellLanes cells in the
+//   lanes of a vector on CPU builds; a stage's cell update and its geometry
+//   one kernel (the cell's records are in cache once).
+// - Staged: the shape, then one corner at a time from its 3 faces (4 times
+//   the face work, a small part of the live state); the cell update and the
+//   geometry two kernels. What a GPU thread runs in registers.
+// Both run on every backend (`numerics.kernels`); the default is the
+// backend's.
+// The fused form is built for host execution spaces only, so that a GPU
+// build holds no kernel that spills (docs/building.md §4).
+enum class KernelForm { Fused, Staged };
+constexpr bool kFusedKernelsBuilt = std::is_same<ExecSpace::memory_space, Kokkos::HostSpace>::value;
+inline KernelForm defaultKernelForm() {
+  return kFusedKernelsBuilt ? KernelForm::Fused : KernelForm::Staged;
+}
 
 KOKKOS_INLINE_FUNCTION void gatherCellNodes(const CellNodesView& cell_nodes, const Vec3View& x_n,
                                             Index c, Vec3 x[8]) {
@@ -253,19 +274,31 @@ enum class StageEnd {
   ForRemap,
 };
 
-// Thermodynamic closure and corner impedance of one cell of known geometry
-// (volume, centroid, corner vectors and corner-face sums), and its time-step
-// candidates folded into `best` (docs/method.md §A3-A4, §A6).
+// The two coefficients of a cell's corner impedances (docs/method.md §A4):
+//   M_cp = rho (aL - aT) sum_f s_pf n_pf (x) n_pf + rho aT (sum_f s_pf) I.
+struct CornerImpedance {
+  double normal_part, transverse;  // rho (aL - aT), rho aT
+};
+
+// Thermodynamic closure of one cell of known shape (volume, centroid, largest
+// face) and its time-step candidates folded into `best` (docs/method.md
+// §A3-A4, §A6); returns its corner-impedance coefficients, also given to
+// `store_corners` before the time-step candidates are formed. (Where the
+// corners are stored changes what a GPU thread holds at once: the fused form
+// stores its geometry's there, the staged form computes them afterwards.)
 // `end_of_stage`: the nodes have just moved in a Lagrangian stage, so a mixed
 // cell's volume change is shared among its materials first.
-KOKKOS_INLINE_FUNCTION void cellThermoOnGeometry(const hex::CellGeometry& geo, const State& s,
-                                                 const TimeStepControls& controls, Index c,
-                                                 StepLimit& best, bool end_of_stage,
-                                                 const StageRelaxation* relaxation = nullptr) {
-  const double volume = geo.shape.volume;
+template <class StoreCorners>
+KOKKOS_INLINE_FUNCTION CornerImpedance cellThermoOnShape(const hex::CellShape& shape,
+                                                         const State& s,
+                                                         const TimeStepControls& controls, Index c,
+                                                         StepLimit& best, bool end_of_stage,
+                                                         const StageRelaxation* relaxation,
+                                                         const StoreCorners& store_corners) {
+  const double volume = shape.volume;
   s.vol_c(c) = volume;
-  storeVec3(s.x_c, c, geo.shape.centroid);
-  const double length = volume / geo.shape.max_face_area;
+  storeVec3(s.x_c, c, shape.centroid);
+  const double length = volume / shape.max_face_area;
   s.len_c(c) = length;
 
   const Vec3 v = loadVec3(s.v_c, c);
@@ -281,20 +314,76 @@ KOKKOS_INLINE_FUNCTION void cellThermoOnGeometry(const hex::CellGeometry& geo, c
   s.aL_c(c) = aL;
   s.aT_c(c) = aT;
 
-  // Corner impedance (docs/method.md §A4) from the corner-face sums.
   const double rho_aL = rho * aL, rho_aT = rho * aT;
-  for (int p = 0; p < 8; ++p) {
-    SymMat3 impedance = (rho_aL - rho_aT) * geo.normal_moment[p];
-    impedance += identitySym(rho_aT * geo.corner_face_area[p]);
-    storeVec3(s.A_cp, 8 * c + p, geo.corner[p]);
-    storeSym(s.M_cp, 8 * c + p, impedance);
-  }
+  const CornerImpedance coefficients{rho_aL - rho_aT, rho_aT};
+  store_corners(coefficients);
 
   const bool finite_state =
       math::isfinite(e) && math::isfinite(thermo.pressure) && math::isfinite(rho);
   cellStepLimit(best, controls, c, volume, length,
                 thermo.min_sound_speed2 > 0.0 ? thermo.aL2 : thermo.min_sound_speed2, s.dvdt_c(c),
                 finite_state, thermo.valid);
+  return coefficients;
+}
+
+// One corner's vector A_cp and impedance M_cp from its corner-face sums.
+KOKKOS_INLINE_FUNCTION void storeCorner(const State& s, Index corner,
+                                        const CornerImpedance& coefficients,
+                                        const hex::CornerSums& sums) {
+  SymMat3 impedance = coefficients.normal_part * sums.normal_moment;
+  impedance += identitySym(coefficients.transverse * sums.area);
+  storeVec3(s.A_cp, corner, sums.vector);
+  storeSym(s.M_cp, corner, impedance);
+}
+
+// The above for a cell whose geometry is at hand (the fused form).
+KOKKOS_INLINE_FUNCTION void cellThermoOnGeometry(const hex::CellGeometry& geo, const State& s,
+                                                 const TimeStepControls& controls, Index c,
+                                                 StepLimit& best, bool end_of_stage,
+                                                 const StageRelaxation* relaxation = nullptr) {
+  cellThermoOnShape(geo.shape, s, controls, c, best, end_of_stage, relaxation,
+                    [&](const CornerImpedance& coefficients) {
+                      for (int p = 0; p < 8; ++p) {
+                        storeCorner(s, 8 * c + p, coefficients,
+                                    {geo.corner[p], geo.normal_moment[p], geo.corner_face_area[p]});
+                      }
+                    });
+}
+
+// The positions of one cell's nodes, read from the mesh when asked for (the
+// staged form: a GPU thread does not hold all 8).
+struct NodesOfCell {
+  CellNodesView cell_nodes;
+  Vec3View x_n;
+  Index c;
+  KOKKOS_INLINE_FUNCTION Vec3 operator()(int n) const { return loadVec3(x_n, cell_nodes(c, n)); }
+};
+
+// The staged form's shape of a cell: a z prism's in closed form (its base
+// kept for prismCorner), a general hexahedron's from its 24 triangles.
+KOKKOS_INLINE_FUNCTION hex::CellShape stagedShape(const NodesOfCell& nodes, bool z_prism,
+                                                  hex::PrismBase& base) {
+  return z_prism ? hex::prismBase(nodes, base) : hex::sweptShape(nodes);
+}
+KOKKOS_INLINE_FUNCTION hex::CornerSums stagedCorner(const NodesOfCell& nodes, bool z_prism,
+                                                    const hex::PrismBase& base, int p) {
+  return z_prism ? hex::prismCorner(nodes, base, p) : hex::cornerSums(nodes, p);
+}
+
+// ... and from the cell's nodes, one corner at a time (the staged form; the
+// same bits).
+KOKKOS_INLINE_FUNCTION void cellThermoOnNodes(const NodesOfCell& nodes, bool z_prism,
+                                              const State& s, const TimeStepControls& controls,
+                                              StepLimit& best, bool end_of_stage) {
+  const Index c = nodes.c;
+  hex::PrismBase base{};  // (read on prisms only)
+  const CornerImpedance coefficients =
+      cellThermoOnShape(stagedShape(nodes, z_prism, base), s, controls, c, best, end_of_stage,
+                        nullptr, [](const CornerImpedance&) {});
+  LAGREMAP_NO_UNROLL
+  for (int p = 0; p < 8; ++p) {
+    storeCorner(s, 8 * c + p, coefficients, stagedCorner(nodes, z_prism, base, p));
+  }
 }
 
 // StageEnd::ForRemap's part of the above at the end of a stage: volume,
@@ -355,18 +444,25 @@ inline CellGeometryView fixedMeshGeometry(const Mesh& mesh) {
   const auto cell_nodes = mesh.cell_nodes;
   const auto x_n = mesh.x_n;
   const bool z_prisms = mesh.z_prisms;
-  const Index n_cells = mesh.n_cells;
   CellGeometryView geometry(
       Kokkos::view_alloc(Kokkos::WithoutInitializing, "lagremap::remap::target_geometry"),
       mesh.n_cells);
+  // once per run: the staged form (a corner at a time, the same bits as the
+  // fused sweep) on every backend
   Kokkos::parallel_for(
-      "lagremap::remap::target_geometry", Kokkos::RangePolicy<ExecSpace>(0, cellChunks(mesh)),
-      KOKKOS_LAMBDA(const Index chunk) {
-        const Index first = chunk * hex::kCellLanes;
-        const int count = chunkCells(n_cells, first);
-        hex::CellGeometry chunk_geometry[hex::kCellLanes];
-        chunkGeometry<true>(cell_nodes, x_n, z_prisms, first, count, chunk_geometry);
-        for (int i = 0; i < count; ++i) geometry(first + i) = chunk_geometry[i];
+      "lagremap::remap::target_geometry", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
+      KOKKOS_LAMBDA(const Index c) {
+        const NodesOfCell nodes{cell_nodes, x_n, c};
+        hex::PrismBase base{};  // (read on prisms only)
+        hex::CellGeometry& g = geometry(c);
+        g.shape = stagedShape(nodes, z_prisms, base);
+        LAGREMAP_NO_UNROLL
+        for (int p = 0; p < 8; ++p) {
+          const hex::CornerSums corner = stagedCorner(nodes, z_prisms, base, p);
+          g.corner[p] = corner.vector;
+          g.normal_moment[p] = corner.normal_moment;
+          g.corner_face_area[p] = corner.area;
+        }
       });
   return geometry;
 }
@@ -415,15 +511,43 @@ StepLimit stepLimitOverCellGeometries(const char* label, const Mesh& mesh, const
   return limit;
 }
 
+// The same for the staged form: `cell(nodes, best)` gets the cell's nodes
+// (NodesOfCell).
+template <class CellUpdate>
+StepLimit stepLimitOverCellNodes(const char* label, const Mesh& mesh, const CellUpdate& cell) {
+  const auto owned = mesh.cell_owned;
+  const auto cell_nodes = mesh.cell_nodes;
+  const auto x_n = mesh.x_n;
+  StepLimit limit;
+  Kokkos::parallel_reduce(
+      label, Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
+      KOKKOS_LAMBDA(const Index c, StepLimit& best) {
+        StepLimit ghost{};
+        cell(NodesOfCell{cell_nodes, x_n, c}, owned(c) ? best : ghost);
+      },
+      StepLimitReducer(limit));
+  return limit;
+}
+
 // Returns the smallest time-step candidate (or a negative value and the
 // failure code for an invalid cell).
 inline StepLimit computeGeometry(const Mesh& mesh, const State& state,
-                                 const TimeStepControls& controls) {
+                                 const TimeStepControls& controls,
+                                 KernelForm form = defaultKernelForm()) {
   const auto s = state;
-  return stepLimitOverCellGeometries<true>(
-      "lagremap::geometry::cells", mesh,
-      KOKKOS_LAMBDA(const Index c, const hex::CellGeometry& geometry, StepLimit& best) {
-        cellThermoOnGeometry(geometry, s, controls, c, best, false);
+  if constexpr (kFusedKernelsBuilt) {
+    if (form == KernelForm::Fused) {
+      return stepLimitOverCellGeometries<true>(
+          "lagremap::geometry::cells", mesh,
+          KOKKOS_LAMBDA(const Index c, const hex::CellGeometry& geometry, StepLimit& best) {
+            cellThermoOnGeometry(geometry, s, controls, c, best, false);
+          });
+    }
+  }
+  const bool z_prisms = mesh.z_prisms;
+  return stepLimitOverCellNodes(
+      "lagremap::geometry::cells", mesh, KOKKOS_LAMBDA(const NodesOfCell& nodes, StepLimit& best) {
+        cellThermoOnNodes(nodes, z_prisms, s, controls, best, false);
       });
 }
 

@@ -106,6 +106,14 @@ struct CellGeometry {
   CellShape shape;
 };
 
+// One corner's part of it (the staged form computes a cell's corners one at a
+// time, docs/method.md §7).
+struct CornerSums {
+  Vec3 vector;  // A_cp
+  SymMat3 normal_moment;
+  double area;
+};
+
 #if LAGREMAP_CELL_PACKS
 // kCellLanes cells in the lanes of one vector (GCC vector extensions).
 constexpr int kCellLanes = 4;
@@ -155,6 +163,67 @@ template <class Real>
 KOKKOS_FORCEINLINE_FUNCTION Point<Real> cross(const Point<Real>& a, const Point<Real>& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
+// One face of the sweep: its 4 nodes q_k relative to the cell's node 0, its
+// face point, the doubled triangle area vectors
+// T_k = (q_k+1 - q_k) x (face point - q_k) = 2 s_t n_t and their sum.
+template <class Real>
+struct FaceSweep {
+  Point<Real> q[4], face_point, doubled[4], doubled_face;
+};
+template <class Real, class NodeAt>
+KOKKOS_FORCEINLINE_FUNCTION void sweepFace(const NodeAt& node, const Point<Real>& origin, int f,
+                                           FaceSweep<Real>& face) {
+  for (int k = 0; k < 4; ++k) face.q[k] = node(faceNode(f, k)) - origin;
+  face.face_point = 0.25 * (face.q[0] + face.q[1] + face.q[2] + face.q[3]);
+  for (int k = 0; k < 4; ++k) {
+    face.doubled[k] = cross(face.q[(k + 1) & 3] - face.q[k], face.face_point - face.q[k]);
+  }
+  face.doubled_face = face.doubled[0] + face.doubled[1] + face.doubled[2] + face.doubled[3];
+}
+// What a face adds to the sums of the cell's shape: with the doubled
+// triangle area vectors T_k, the tetrahedron (origin, q_k, q_k+1, face point)
+// has volume q_k . T_k / 6 and centroid (q_k + q_k+1 + face point) / 4, so
+//   volume = sum(q_k . T_k) / 6,
+//   centroid = sum((q_k . T_k)(q_k + q_k+1 + fp)) / (4 sum(q_k . T_k))
+// (the constant factors folded out of the 24-triangle loop).
+template <class Real>
+KOKKOS_FORCEINLINE_FUNCTION void addFaceToShape(const FaceSweep<Real>& face, Real& six_volume,
+                                                Point<Real>& weighted_sum, Real& max_area2) {
+  LAGREMAP_UNROLL
+  for (int k = 0; k < 4; ++k) {
+    const Real weight = dot(face.q[k], face.doubled[k]);
+    six_volume += weight;
+    weighted_sum = weighted_sum + weight * (face.q[k] + face.q[(k + 1) & 3] + face.face_point);
+  }
+  const Real area2 = 0.25 * dot(face.doubled_face, face.doubled_face);
+  max_area2 = area2 > max_area2 ? area2 : max_area2;
+}
+// The corner-face vector of the face's node k:
+//   s_pf n_pf = 1/3 (t_k-1 + t_k + 1/4 face) = 1/6 (T_k-1 + T_k + 1/4 sum T).
+template <class Real>
+KOKKOS_FORCEINLINE_FUNCTION Point<Real> cornerFaceVector(const FaceSweep<Real>& face, int k) {
+  return (1.0 / 6.0) * (face.doubled[(k + 3) & 3] + face.doubled[k] + 0.25 * face.doubled_face);
+}
+// What one corner face adds to its corner's sums: its vector w, normal moment
+// w (x) w / |w| and area |w|. A degenerate corner face has no normal and adds
+// nothing (a sum that is never -0 is unchanged by adding +0).
+template <class Real>
+KOKKOS_FORCEINLINE_FUNCTION void addCornerFace(const Point<Real>& w, Point<Real>& corner,
+                                               Real moment[6], Real& area) {
+  corner = corner + w;
+  const Real area2 = dot(w, w);
+  const auto has_area = area2 > Real{};
+  const Real size = laneSqrt(area2);
+  const Point<Real> n = (1.0 / size) * w;
+  moment[0] += has_area ? n.x * w.x : Real{};
+  moment[1] += has_area ? n.y * w.y : Real{};
+  moment[2] += has_area ? n.z * w.z : Real{};
+  moment[3] += has_area ? n.x * w.y : Real{};
+  moment[4] += has_area ? n.y * w.z : Real{};
+  moment[5] += has_area ? n.x * w.z : Real{};
+  area += has_area ? size : Real{};
+}
+
 // What the sweep accumulates, in the scalar of the sweep.
 template <class Real>
 struct Sums {
@@ -169,12 +238,7 @@ struct Sums {
 template <bool kCornerSums, class Real>
 KOKKOS_FORCEINLINE_FUNCTION void sweepTriangles(const Point<Real> x[8], Sums<Real>& g) {
   const Point<Real> origin = x[0];
-  // Constant factors are folded out of the 24-triangle loop: with the doubled
-  // triangle area vectors T_k = (q_k+1 - q_k) x (face point - q_k) = 2 s_t n_t,
-  // the tetrahedron (origin, q_k, q_k+1, face point) has volume q_k . T_k / 6
-  // and centroid (q_k + q_k+1 + face point) / 4, so
-  //   volume = sum(q_k . T_k) / 6,
-  //   centroid = sum((q_k . T_k)(q_k + q_k+1 + fp)) / (4 sum(q_k . T_k)).
+  const auto node = [&](int n) -> const Point<Real>& { return x[n]; };
   Real six_volume = Real{}, max_area2 = Real{};
   Point<Real> weighted_sum{Real{}, Real{}, Real{}};  // relative to origin
   if constexpr (kCornerSums) {
@@ -186,43 +250,27 @@ KOKKOS_FORCEINLINE_FUNCTION void sweepTriangles(const Point<Real> x[8], Sums<Rea
   }
   LAGREMAP_UNROLL
   for (int f = 0; f < 6; ++f) {
-    Point<Real> q[4];
-    for (int k = 0; k < 4; ++k) q[k] = x[faceNode(f, k)] - origin;
-    const Point<Real> face_point = 0.25 * (q[0] + q[1] + q[2] + q[3]);
-    Point<Real> doubled[4];  // T_k = 2 s_t n_t
-    for (int k = 0; k < 4; ++k) doubled[k] = cross(q[(k + 1) & 3] - q[k], face_point - q[k]);
-    const Point<Real> doubled_face = doubled[0] + doubled[1] + doubled[2] + doubled[3];
-    LAGREMAP_UNROLL
-    for (int k = 0; k < 4; ++k) {
-      const Real weight = dot(q[k], doubled[k]);
-      six_volume += weight;
-      weighted_sum = weighted_sum + weight * (q[k] + q[(k + 1) & 3] + face_point);
-      if constexpr (!kCornerSums) continue;
-      // s_pf n_pf = 1/3 (t_k-1 + t_k + 1/4 face) = 1/6 (T_k-1 + T_k + 1/4 sum T)
-      const Point<Real> w = (1.0 / 6.0) * (doubled[(k + 3) & 3] + doubled[k] + 0.25 * doubled_face);
-      const int p = faceNode(f, k);
-      g.corner[p] = g.corner[p] + w;
-      // a degenerate corner face has no normal and adds nothing (a sum that
-      // is never -0 is unchanged by adding +0)
-      const Real area2 = dot(w, w);
-      const auto has_area = area2 > Real{};
-      const Real area = laneSqrt(area2);
-      const Point<Real> n = (1.0 / area) * w;
-      Real* m = g.moment[p];
-      m[0] += has_area ? n.x * w.x : Real{};
-      m[1] += has_area ? n.y * w.y : Real{};
-      m[2] += has_area ? n.z * w.z : Real{};
-      m[3] += has_area ? n.x * w.y : Real{};
-      m[4] += has_area ? n.y * w.z : Real{};
-      m[5] += has_area ? n.x * w.z : Real{};
-      g.area[p] += has_area ? area : Real{};
+    FaceSweep<Real> face;
+    sweepFace(node, origin, f, face);
+    addFaceToShape(face, six_volume, weighted_sum, max_area2);
+    if constexpr (kCornerSums) {
+      LAGREMAP_UNROLL
+      for (int k = 0; k < 4; ++k) {
+        const int p = faceNode(f, k);
+        addCornerFace(cornerFaceVector(face, k), g.corner[p], g.moment[p], g.area[p]);
+      }
     }
-    const Real area2 = 0.25 * dot(doubled_face, doubled_face);
-    max_area2 = area2 > max_area2 ? area2 : max_area2;
   }
   g.volume = six_volume / 6.0;
   g.centroid = origin + (0.25 / six_volume) * weighted_sum;
   g.max_face_area = laneSqrt(max_area2);
+}
+
+// A node's position as a Point of the staged form's sweep.
+template <class NodeAt>
+KOKKOS_FORCEINLINE_FUNCTION Point<double> nodePoint(const NodeAt& node, int n) {
+  const Vec3 x = node(n);
+  return {x.x, x.y, x.z};
 }
 
 // Lane i of the sums into g (the corner arrays only with kCornerSums).
@@ -257,6 +305,82 @@ KOKKOS_INLINE_FUNCTION void cellGeometry(const Vec3 x[8], CellGeometry& g) {
       sums, [](double v) { return v; }, g);
 }
 
+// The staged form (docs/method.md §7.6): the shape alone, then one corner at
+// a time, each from its 3 faces, in the sweep's order and arithmetic, so the
+// same bits as cellGeometry, with a small part of its live state (the 8
+// corners' sums are never held at once) for 4 times its face work. `node(n)`
+// gives the position of the cell's node n (a GPU thread reads it from the
+// mesh, through the cache, rather than hold all 8).
+template <class NodeAt>
+KOKKOS_INLINE_FUNCTION CellShape sweptShape(const NodeAt& node) {
+  using detail::Point;
+  const Point<double> origin = detail::nodePoint(node, 0);
+  const auto point = [&](int n) { return detail::nodePoint(node, n); };
+  double six_volume = 0.0, max_area2 = 0.0;
+  Point<double> weighted_sum{0.0, 0.0, 0.0};  // relative to origin
+  LAGREMAP_NO_UNROLL
+  for (int f = 0; f < 6; ++f) {
+    detail::FaceSweep<double> face;
+    detail::sweepFace(point, origin, f, face);
+    detail::addFaceToShape(face, six_volume, weighted_sum, max_area2);
+  }
+  const Point<double> centroid = origin + (0.25 / six_volume) * weighted_sum;
+  return {six_volume / 6.0, Vec3{centroid.x, centroid.y, centroid.z}, math::sqrt(max_area2)};
+}
+
+// Node p (VTK order: x bit set for 1, 2, 5, 6, y bit for 2, 3, 6, 7, z bit
+// for 4..7) lies on faces x-/x+ (0/1), y-/y+ (2/3) and z-/z+ (4/5): its i-th
+// face in increasing order, the sweep's.
+KOKKOS_INLINE_FUNCTION int faceOfNode(int p, int i) {
+  const int q = p & 3;
+  const int side = i == 0 ? (q == 1 || q == 2) : i == 1 ? (q >= 2) : (p >= 4);
+  return 2 * i + side;
+}
+
+namespace detail {
+// The corner-face vector of node k of face f (cornerFaceVector of sweepFace),
+// with k known only at run time: the 4 doubled triangles in turn, the two of
+// node k kept by selection, so that nothing is held in an indexed array
+// (which a GPU keeps in local memory).
+template <class NodeAt>
+KOKKOS_FORCEINLINE_FUNCTION Point<double> cornerFaceVectorAt(const NodeAt& point,
+                                                             const Point<double>& origin, int f,
+                                                             int k) {
+  Point<double> q[4];
+  LAGREMAP_UNROLL
+  for (int j = 0; j < 4; ++j) q[j] = point(faceNode(f, j)) - origin;
+  const Point<double> face_point = 0.25 * (q[0] + q[1] + q[2] + q[3]);
+  const int before = (k + 3) & 3;
+  Point<double> sum{}, own{}, previous{};
+  LAGREMAP_UNROLL
+  for (int j = 0; j < 4; ++j) {
+    const Point<double> doubled = cross(q[(j + 1) & 3] - q[j], face_point - q[j]);
+    sum = j == 0 ? doubled : sum + doubled;
+    own = j == k ? doubled : own;
+    previous = j == before ? doubled : previous;
+  }
+  return (1.0 / 6.0) * (previous + own + 0.25 * sum);
+}
+}  // namespace detail
+
+template <class NodeAt>
+KOKKOS_INLINE_FUNCTION CornerSums cornerSums(const NodeAt& node, int p) {
+  using detail::Point;
+  const Point<double> origin = detail::nodePoint(node, 0);
+  const auto point = [&](int n) { return detail::nodePoint(node, n); };
+  Point<double> vector{0.0, 0.0, 0.0};
+  double moment[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0}, area = 0.0;
+  LAGREMAP_NO_UNROLL
+  for (int i = 0; i < 3; ++i) {
+    const int f = faceOfNode(p, i);
+    int k = 0;  // p's place on face f
+    for (int j = 1; j < 4; ++j) k = faceNode(f, j) == p ? j : k;
+    detail::addCornerFace(detail::cornerFaceVectorAt(point, origin, f, k), vector, moment, area);
+  }
+  return {Vec3{vector.x, vector.y, vector.z},
+          SymMat3{moment[0], moment[1], moment[2], moment[3], moment[4], moment[5]}, area};
+}
+
 // The geometry of kCellLanes cells at once (the general sweep in the lanes of
 // a vector: the same bits as cellGeometry cell by cell); x[i]: the 8 nodes of
 // cell i.
@@ -283,47 +407,6 @@ KOKKOS_INLINE_FUNCTION void cellGeometries(const Vec3 x[kCellLanes][8],
 #endif
 }
 
-// The corner sums of prismGeometry: from the height, the bottom edges e_k and
-// their squared lengths, the quad's doubled triangle areas T_k and their sum.
-KOKKOS_INLINE_FUNCTION void prismCornerSums(double height, const double edge_x[4],
-                                            const double edge_y[4], const double edge2[4],
-                                            const double doubled[4], double twice_area,
-                                            CellGeometry& g) {
-  // a side face's quarter: vector, area and normal moment S (x) S / (4 |S|)
-  // (in the xy block; a degenerate face adds no moment or area)
-  double quarter_x[4], quarter_y[4], quarter_area[4], moment_xx[4], moment_yy[4], moment_xy[4];
-  for (int k = 0; k < 4; ++k) {
-    quarter_x[k] = 0.25 * height * edge_y[k];
-    quarter_y[k] = -0.25 * height * edge_x[k];
-    const double length = math::sqrt(edge2[k]);
-    const double scale = length > 0.0 && height > 0.0 ? 0.25 * height / length : 0.0;
-    quarter_area[k] = 0.25 * height * length;
-    moment_xx[k] = scale * (edge_y[k] * edge_y[k]);
-    moment_yy[k] = scale * (edge_x[k] * edge_x[k]);
-    moment_xy[k] = -scale * (edge_x[k] * edge_y[k]);
-  }
-  for (int p = 0; p < 4; ++p) {
-    const int before = (p + 3) & 3;  // the side faces of node p: edges p - 1 and p
-    const double w = (1.0 / 6.0) * (doubled[before] + doubled[p] + 0.25 * twice_area);
-    const double w_size = math::fabs(w);
-    const double in_plane_x = quarter_x[before] + quarter_x[p];
-    const double in_plane_y = quarter_y[before] + quarter_y[p];
-    const SymMat3 moment{moment_xx[before] + moment_xx[p],
-                         moment_yy[before] + moment_yy[p],
-                         w_size,
-                         moment_xy[before] + moment_xy[p],
-                         0.0,
-                         0.0};
-    const double area = quarter_area[before] + quarter_area[p] + w_size;
-    g.corner[p] = Vec3{in_plane_x, in_plane_y, -w};
-    g.corner[p + 4] = Vec3{in_plane_x, in_plane_y, w};
-    g.normal_moment[p] = moment;
-    g.normal_moment[p + 4] = moment;
-    g.corner_face_area[p] = area;
-    g.corner_face_area[p + 4] = area;
-  }
-}
-
 // A right prism along z (Mesh::z_prisms, a one-cell slab between symmetry
 // planes): top node p + 4 straight above bottom node p (same x and y), the
 // bottom nodes on one z plane, the top ones on another. Its 24-facet
@@ -342,39 +425,106 @@ KOKKOS_INLINE_FUNCTION void prismCornerSums(double height, const double edge_x[4
 //    z_0 + h / 2), faces of area |sum T| / 2 and |S_k|.
 // The same numbers as cellGeometry up to round-off (test_geometry), with 4
 // square roots and 4 divisions instead of 24 each. Same template argument.
-template <bool kCornerSums = true>
-KOKKOS_INLINE_FUNCTION void prismGeometry(const Vec3 x[8], CellGeometry& g) {
-  const Vec3 origin = x[0];
-  const double height = x[4].z - origin.z;
+// What the corners of a z prism (prismGeometry) need besides its nodes:
+// node 0 (the origin of the bottom quad's coordinates), the quad's mean point
+// F, the height and the doubled area sum T.
+struct PrismBase {
+  double origin_x, origin_y, fx, fy, height, twice_area;
+};
+
+// Edge k of the base, P_k+1 - P_k, its squared length and its triangle's
+// doubled area T_k = e_k x (F - P_k), for the bottom node coordinates px, py
+// (relative to node 0).
+struct PrismEdge {
+  double x, y, length2, doubled;
+};
+KOKKOS_INLINE_FUNCTION PrismEdge prismEdge(double px, double py, double px_next, double py_next,
+                                           double fx, double fy) {
+  const double edge_x = px_next - px, edge_y = py_next - py;
+  return {edge_x, edge_y, edge_x * edge_x + edge_y * edge_y,
+          edge_x * (fy - py) - edge_y * (fx - px)};
+}
+
+// The base of the prism whose node n is at node(n), and its shape.
+template <class NodeAt>
+KOKKOS_INLINE_FUNCTION CellShape prismBase(const NodeAt& node, PrismBase& base) {
+  const Vec3 origin = node(0);
+  const double height = node(4).z - origin.z;
   double px[4], py[4];  // the bottom quad relative to node 0
   for (int k = 0; k < 4; ++k) {
-    px[k] = x[k].x - origin.x;
-    py[k] = x[k].y - origin.y;
+    const Vec3 x = node(k);
+    px[k] = x.x - origin.x;
+    py[k] = x.y - origin.y;
   }
   const double fx = 0.25 * (px[0] + px[1] + px[2] + px[3]);
   const double fy = 0.25 * (py[0] + py[1] + py[2] + py[3]);
-  double doubled[4], edge_x[4], edge_y[4], edge2[4];
   double twice_area = 0.0, weighted_x = 0.0, weighted_y = 0.0, longest2 = 0.0;
   for (int k = 0; k < 4; ++k) {
     const int next = (k + 1) & 3;
-    edge_x[k] = px[next] - px[k];
-    edge_y[k] = py[next] - py[k];
-    doubled[k] = edge_x[k] * (fy - py[k]) - edge_y[k] * (fx - px[k]);
-    twice_area += doubled[k];
-    weighted_x += doubled[k] * (px[k] + px[next] + fx);
-    weighted_y += doubled[k] * (py[k] + py[next] + fy);
-    edge2[k] = edge_x[k] * edge_x[k] + edge_y[k] * edge_y[k];
-    longest2 = edge2[k] > longest2 ? edge2[k] : longest2;
+    const PrismEdge edge = prismEdge(px[k], py[k], px[next], py[next], fx, fy);
+    twice_area += edge.doubled;
+    weighted_x += edge.doubled * (px[k] + px[next] + fx);
+    weighted_y += edge.doubled * (py[k] + py[next] + fy);
+    longest2 = edge.length2 > longest2 ? edge.length2 : longest2;
   }
+  base = {origin.x, origin.y, fx, fy, height, twice_area};
   const double quad_area = 0.5 * twice_area;
   const double side2 = height * height * longest2;
   const double max_area2 = quad_area * quad_area > side2 ? quad_area * quad_area : side2;
   const double third_over_area = 1.0 / (3.0 * twice_area);
-  g.shape = {
-      quad_area * height,
-      origin + Vec3{third_over_area * weighted_x, third_over_area * weighted_y, 0.5 * height},
-      math::sqrt(max_area2)};
-  if constexpr (kCornerSums) prismCornerSums(height, edge_x, edge_y, edge2, doubled, twice_area, g);
+  return {quad_area * height,
+          origin + Vec3{third_over_area * weighted_x, third_over_area * weighted_y, 0.5 * height},
+          math::sqrt(max_area2)};
+}
+
+// What the side face over an edge gives each of its 4 nodes: a quarter of it,
+// vector S_k / 4 (in the xy plane), area |S_k| / 4 and normal moment
+// S (x) S / (4 |S|) (a degenerate face adds no moment or area).
+struct PrismQuarter {
+  double x, y, area, moment_xx, moment_yy, moment_xy;
+};
+KOKKOS_INLINE_FUNCTION PrismQuarter prismQuarter(const PrismEdge& edge, double height) {
+  const double length = math::sqrt(edge.length2);
+  const double scale = length > 0.0 && height > 0.0 ? 0.25 * height / length : 0.0;
+  return {0.25 * height * edge.y,    -0.25 * height * edge.x,   0.25 * height * length,
+          scale * (edge.y * edge.y), scale * (edge.x * edge.x), -scale * (edge.x * edge.y)};
+}
+
+// Corner p's sums of a prism (p + 4 straight above p): its two side faces
+// (edges p - 1 and p of the base: bottom nodes p - 1, p, p + 1) and the
+// bottom (p < 4) or top face.
+template <class NodeAt>
+KOKKOS_INLINE_FUNCTION CornerSums prismCorner(const NodeAt& node, const PrismBase& base, int p) {
+  const int q = p & 3, before = (q + 3) & 3, next = (q + 1) & 3;
+  const Vec3 x_before = node(before), x_q = node(q), x_next = node(next);
+  const double px_before = x_before.x - base.origin_x, py_before = x_before.y - base.origin_y;
+  const double px = x_q.x - base.origin_x, py = x_q.y - base.origin_y;
+  const double px_next = x_next.x - base.origin_x, py_next = x_next.y - base.origin_y;
+  const PrismEdge edge_before = prismEdge(px_before, py_before, px, py, base.fx, base.fy);
+  const PrismEdge edge = prismEdge(px, py, px_next, py_next, base.fx, base.fy);
+  const PrismQuarter a = prismQuarter(edge_before, base.height);
+  const PrismQuarter b = prismQuarter(edge, base.height);
+  const double w = (1.0 / 6.0) * (edge_before.doubled + edge.doubled + 0.25 * base.twice_area);
+  const double w_size = math::fabs(w);
+  return {Vec3{a.x + b.x, a.y + b.y, p < 4 ? -w : w},
+          SymMat3{a.moment_xx + b.moment_xx, a.moment_yy + b.moment_yy, w_size,
+                  a.moment_xy + b.moment_xy, 0.0, 0.0},
+          a.area + b.area + w_size};
+}
+
+template <bool kCornerSums = true>
+KOKKOS_INLINE_FUNCTION void prismGeometry(const Vec3 x[8], CellGeometry& g) {
+  const auto node = [&](int n) { return x[n]; };
+  PrismBase base;
+  g.shape = prismBase(node, base);
+  if constexpr (kCornerSums) {
+    for (int p = 0; p < 8; ++p) {
+      const CornerSums corner = prismCorner(node, base, p);
+      g.corner[p] = corner.vector;
+      g.normal_moment[p] = corner.normal_moment;
+      g.corner_face_area[p] = corner.area;
+    }
+  }
 }
 
 // The 8 corner vectors A_cp = sum_f s_pf n_pf = d v_c / d x_p (GCL, docs/method.md §A2).

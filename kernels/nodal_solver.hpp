@@ -1018,27 +1018,49 @@ inline void updateCells(const Mesh& mesh, const State& state, double dt_stage) {
 // while the cell's corner records are in cache); returns the time-step
 // candidates of the new state. Same results as updateCells + computeGeometry.
 // `what`: see StageEnd.
+// The staged form (KernelForm) runs the cell update and the geometry as two
+// kernels.
 inline StepLimit updateCellsAndGeometry(const Mesh& mesh, const State& state, double dt_stage,
                                         const TimeStepControls& controls,
-                                        StageEnd what = StageEnd::Full) {
+                                        StageEnd what = StageEnd::Full,
+                                        KernelForm form = defaultKernelForm()) {
   const auto cell_nodes = mesh.cell_nodes;
   const auto x_n = mesh.x_n;
   const auto s = state;
+  if constexpr (kFusedKernelsBuilt) {
+    if (form == KernelForm::Fused) {
+      if (what == StageEnd::ForRemap) {
+        return stepLimitOverCellGeometries<false>(
+            "lagremap::cell_update::update_and_shape", mesh,
+            KOKKOS_LAMBDA(const Index c, const hex::CellGeometry& geometry, StepLimit& best) {
+              StageRelaxation relaxation;
+              updateCell(cell_nodes, x_n, s, dt_stage, c, relaxation);
+              cellShapeForRemap(geometry.shape, s, c, best, &relaxation);
+            });
+      }
+      return stepLimitOverCellGeometries<true>(
+          "lagremap::cell_update::update_and_geometry", mesh,
+          KOKKOS_LAMBDA(const Index c, const hex::CellGeometry& geometry, StepLimit& best) {
+            StageRelaxation relaxation;
+            updateCell(cell_nodes, x_n, s, dt_stage, c, relaxation);
+            cellThermoOnGeometry(geometry, s, controls, c, best, true, &relaxation);
+          });
+    }
+  }
+  updateCells(mesh, state, dt_stage);
+  const bool z_prisms = mesh.z_prisms;
   if (what == StageEnd::ForRemap) {
-    return stepLimitOverCellGeometries<false>(
-        "lagremap::cell_update::update_and_shape", mesh,
-        KOKKOS_LAMBDA(const Index c, const hex::CellGeometry& geometry, StepLimit& best) {
-          StageRelaxation relaxation;
-          updateCell(cell_nodes, x_n, s, dt_stage, c, relaxation);
-          cellShapeForRemap(geometry.shape, s, c, best, &relaxation);
+    return stepLimitOverCellNodes(
+        "lagremap::cell_update::shape", mesh,
+        KOKKOS_LAMBDA(const NodesOfCell& nodes, StepLimit& best) {
+          hex::PrismBase base{};  // (read on prisms only)
+          cellShapeForRemap(stagedShape(nodes, z_prisms, base), s, nodes.c, best);
         });
   }
-  return stepLimitOverCellGeometries<true>(
-      "lagremap::cell_update::update_and_geometry", mesh,
-      KOKKOS_LAMBDA(const Index c, const hex::CellGeometry& geometry, StepLimit& best) {
-        StageRelaxation relaxation;
-        updateCell(cell_nodes, x_n, s, dt_stage, c, relaxation);
-        cellThermoOnGeometry(geometry, s, controls, c, best, true, &relaxation);
+  return stepLimitOverCellNodes(
+      "lagremap::cell_update::geometry", mesh,
+      KOKKOS_LAMBDA(const NodesOfCell& nodes, StepLimit& best) {
+        cellThermoOnNodes(nodes, z_prisms, s, controls, best, true);
       });
 }
 

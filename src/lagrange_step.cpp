@@ -49,7 +49,7 @@ StepLimit LagrangeStep::overAllRanks(StepLimit limit) const {
 
 StepLimit LagrangeStep::computeGeometry() {
   auto scope = timers_.scope(Phase::Geometry);
-  return overAllRanks(lagremap::computeGeometry(mesh_, state_, numerics_.step));
+  return overAllRanks(lagremap::computeGeometry(mesh_, state_, numerics_.step, numerics_.kernels));
 }
 
 StepLimit LagrangeStep::computeGeometry(const CellGeometryView& known_geometry) {
@@ -89,7 +89,8 @@ StepLimit LagrangeStep::stage(double dt_stage, bool last_stage) {
   const StageEnd what = last_stage && remap_follows_ ? StageEnd::ForRemap : StageEnd::Full;
   {
     auto scope = timers_.scope(Phase::CellUpdate);
-    limit = updateCellsAndGeometry(mesh_, state_, dt_stage, numerics_.step, what);
+    limit =
+        updateCellsAndGeometry(mesh_, state_, dt_stage, numerics_.step, what, numerics_.kernels);
   }
   if (halo_) {
     // what the next stage, or the remap, reads in the outer ghost layer (the

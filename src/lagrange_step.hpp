@@ -30,6 +30,7 @@ struct Numerics {
   double dt_drop_fraction = 1e-2;
   long max_steps = 10000000;
   Gather gather = Gather::Crs;
+  KernelForm kernels = defaultKernelForm();  // numerics.kernels
 };
 
 // A run that cannot go on (tangled cell, NaN, dt collapse): the driver writes

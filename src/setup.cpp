@@ -46,6 +46,10 @@ Config declareConfig(const Problem& problem, const std::string& mode) {
   config.addInteger("numerics.max_steps", 10000000, "the run stops after this many steps");
   config.addChoice("numerics.gather", "crs", {"crs", "atomics"},
                    "node sums: node->corner CRS (deterministic) or atomic scatter");
+  config.addChoice("numerics.kernels", "auto", {"auto", "fused", "staged"},
+                   "per-cell kernel form, the same results: fused (one sweep per cell, CPU "
+                   "vector lanes), staged (a corner at a time, separate kernels: GPU "
+                   "registers), auto (the backend's: fused on CPUs, staged on GPUs)");
   return config;
 }
 
@@ -60,6 +64,15 @@ Numerics readNumerics(const Config& config) {
   numerics.dt_drop_fraction = config.real("numerics.dt_drop_fraction");
   numerics.max_steps = config.integer("numerics.max_steps");
   numerics.gather = config.text("numerics.gather") == "atomics" ? Gather::Atomics : Gather::Crs;
+  const std::string kernels = config.text("numerics.kernels");
+  if (kernels != "auto")
+    numerics.kernels = kernels == "staged" ? KernelForm::Staged : KernelForm::Fused;
+  if (numerics.kernels == KernelForm::Fused && !kFusedKernelsBuilt) {
+    throw ConfigError(
+        "numerics.kernels = fused: the fused form is built for CPU backends only "
+        "(this build runs on " +
+        std::string(ExecSpace::name()) + ")");
+  }
   if (!(numerics.step.cfl > 0.0 && numerics.step.cfl <= 1.0)) {
     throw ConfigError("numerics.cfl must be in (0, 1]");
   }

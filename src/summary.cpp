@@ -17,6 +17,7 @@ void writeRunAndSpeed(JsonWriter& json, const Simulation& simulation, const RunR
       .value("mode", simulation.options().mode)
       .value("order", simulation.numerics().order)
       .value("gather", config.text("numerics.gather"))
+      .value("kernels", simulation.numerics().kernels == KernelForm::Staged ? "staged" : "fused")
       .value("threads", executionSpaceIsHost() ? long(ExecSpace().concurrency()) : 0L)
       .value("concurrency", long(ExecSpace().concurrency()))
       .value("execution_space", ExecSpace::name())

@@ -184,6 +184,54 @@ TEST(Geometry, CellsInLanesGiveTheSameBitsAsOneByOne) {
 // closed forms of hex::prismGeometry give the general sweep's volume,
 // centroid, face area, corner vectors and impedance sums to round-off, on
 // distorted (non-convex too) quads far from the origin, thin and thick.
+// The staged form (kernels/geometry.hpp, KernelForm): the shape alone, then
+// each corner from its 3 faces, with the node positions read one at a time;
+// the same bits as the fused sweep, a degenerate face included.
+TEST(Geometry, StagedFormGivesTheSweepsBitsCornerByCorner) {
+  std::mt19937 rng(11);
+  for (int trial = 0; trial < 40; ++trial) {
+    Vec3 x[8];
+    distortedHex(rng, trial % 3 ? 0.3 : 0.45, Vec3{-20.0 + trial, 4.0, 9.0}, x);
+    if (trial % 4 == 1) {
+      for (int p = 5; p < 8; ++p) x[p] = x[4];  // the top face collapsed to a point
+    }
+    hex::CellGeometry fused;
+    hex::cellGeometry(x, fused);
+    const auto node = [&](int n) { return x[n]; };
+    const hex::CellShape shape = hex::sweptShape(node);
+    EXPECT_EQ(shape.volume, fused.shape.volume) << "trial " << trial;
+    EXPECT_EQ(shape.centroid.x, fused.shape.centroid.x);
+    EXPECT_EQ(shape.centroid.y, fused.shape.centroid.y);
+    EXPECT_EQ(shape.centroid.z, fused.shape.centroid.z);
+    EXPECT_EQ(shape.max_face_area, fused.shape.max_face_area);
+    for (int p = 0; p < 8; ++p) {
+      const hex::CornerSums corner = hex::cornerSums(node, p);
+      EXPECT_EQ(corner.vector.x, fused.corner[p].x) << "trial " << trial << " corner " << p;
+      EXPECT_EQ(corner.vector.y, fused.corner[p].y);
+      EXPECT_EQ(corner.vector.z, fused.corner[p].z);
+      EXPECT_EQ(corner.area, fused.corner_face_area[p]);
+      const SymMat3& m = corner.normal_moment;
+      const SymMat3& m_fused = fused.normal_moment[p];
+      EXPECT_EQ(m.xx, m_fused.xx);
+      EXPECT_EQ(m.yy, m_fused.yy);
+      EXPECT_EQ(m.zz, m_fused.zz);
+      EXPECT_EQ(m.xy, m_fused.xy);
+      EXPECT_EQ(m.yz, m_fused.yz);
+      EXPECT_EQ(m.xz, m_fused.xz);
+    }
+  }
+  // each node's 3 faces, in increasing order, hold it
+  for (int p = 0; p < 8; ++p) {
+    for (int i = 0; i < 3; ++i) {
+      const int f = hex::faceOfNode(p, i);
+      EXPECT_EQ(f / 2, i);
+      int holds = 0;
+      for (int k = 0; k < 4; ++k) holds += hex::faceNode(f, k) == p;
+      EXPECT_EQ(holds, 1) << "node " << p << " face " << f;
+    }
+  }
+}
+
 TEST(Geometry, PrismGeometryIsTheGeneralSweepOfAPrism) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
