@@ -387,15 +387,17 @@ KOKKOS_INLINE_FUNCTION void cellThermoOnNodes(const NodesOfCell& nodes, bool z_p
 }
 
 // StageEnd::ForRemap's part of the above at the end of a stage: volume,
-// centroid and volume shares, and the checks that need no equation of state
-// (a tangled cell, a non-finite energy or density). Proposes no time step.
+// centroid and volume shares (`share`: here; the staged form shares them in
+// a kernel of its own), and the checks that need no equation of state (a
+// tangled cell, a non-finite energy or density). Proposes no time step.
 KOKKOS_INLINE_FUNCTION void cellShapeForRemap(const hex::CellShape& shape, const State& s, Index c,
                                               StepLimit& best,
-                                              const StageRelaxation* relaxation = nullptr) {
+                                              const StageRelaxation* relaxation = nullptr,
+                                              bool share = true) {
   const double volume = shape.volume;
   s.vol_c(c) = volume;
   storeVec3(s.x_c, c, shape.centroid);
-  if (s.n_materials > 1) shareVolumeChange(s, c, volume, relaxation);
+  if (share && s.n_materials > 1) shareVolumeChange(s, c, volume, relaxation);
   if (!(volume > 0.0)) return proposeStepLimit(best, -1.0, c, kBadVolume);
   const Vec3 v = loadVec3(s.v_c, c);
   const double e = s.E_c(c) - 0.5 * dot(v, v);
@@ -527,6 +529,26 @@ StepLimit stepLimitOverCellNodes(const char* label, const Mesh& mesh, const Cell
       },
       StepLimitReducer(limit));
   return limit;
+}
+
+// The staged form's volume sharing at the end of a stage: each mixed cell's
+// new volume shared among its materials (shareVolumeChange, from the
+// step-start state, the same bits as the fused form's).
+inline void shareVolumeChanges(const Mesh& mesh, const State& state) {
+  const auto cell_nodes = mesh.cell_nodes;
+  const auto x_n = mesh.x_n;
+  const bool z_prisms = mesh.z_prisms;
+  const auto s = state;
+  Kokkos::parallel_for(
+      "lagremap::cell_update::share_volume", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
+      KOKKOS_LAMBDA(const Index c) {
+        int present = 0;
+        for (int k = 0; k < s.n_materials; ++k) present += s.alpha_ck0(c, k) > 0.0;
+        if (present < 2) return;
+        hex::PrismBase base{};  // (read on prisms only)
+        shareVolumeChange(s, c,
+                          stagedShape(NodesOfCell{cell_nodes, x_n, c}, z_prisms, base).volume);
+      });
 }
 
 // Returns the smallest time-step candidate (or a negative value and the

@@ -538,4 +538,33 @@ KOKKOS_INLINE_FUNCTION void cornerVectors(const Vec3 x[8], Vec3 corner[8]) {
   }
 }
 
+// Corner vector p alone, from its 3 faces in cornerVectors' order and
+// arithmetic (the same bits), the two triangles of node p kept by selection:
+// the staged form of cornerVectors, `node(n)` the position of node n.
+template <class NodeAt>
+KOKKOS_INLINE_FUNCTION Vec3 cornerVector(const NodeAt& node, int p) {
+  Vec3 corner{0.0, 0.0, 0.0};
+  LAGREMAP_NO_UNROLL
+  for (int i = 0; i < 3; ++i) {
+    const int f = faceOfNode(p, i);
+    int k = 0;  // p's place on face f
+    for (int j = 1; j < 4; ++j) k = faceNode(f, j) == p ? j : k;
+    const int before = (k + 3) & 3;
+    Vec3 q[4];
+    LAGREMAP_UNROLL
+    for (int j = 0; j < 4; ++j) q[j] = node(faceNode(f, j));
+    const Vec3 face_point = 0.25 * (q[0] + q[1] + q[2] + q[3]);
+    Vec3 face_area{}, own{}, previous{};
+    LAGREMAP_UNROLL
+    for (int j = 0; j < 4; ++j) {
+      const Vec3 triangle = 0.5 * cross(q[(j + 1) & 3] - q[j], face_point - q[j]);
+      face_area = j == 0 ? triangle : face_area + triangle;
+      own = j == k ? triangle : own;
+      previous = j == before ? triangle : previous;
+    }
+    corner += (1.0 / 3.0) * (previous + own + 0.25 * face_area);
+  }
+  return corner;
+}
+
 }  // namespace lagremap::hex

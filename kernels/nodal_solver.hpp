@@ -773,6 +773,27 @@ KOKKOS_INLINE_FUNCTION Mat3 stageDeformation(const CellNodesView& cell_nodes, co
   return deformation;
 }
 
+// The same from one corner vector at a time (the staged form: the same
+// bits, without the 16 positions and vectors held at once).
+KOKKOS_INLINE_FUNCTION Mat3 stagedStageDeformation(const CellNodesView& cell_nodes,
+                                                   const Vec3View& x_n, const State& s, Index c) {
+  const NodesOfCell start{cell_nodes, s.x_n0, c};
+  const Vec3 x_start_0 = start(0);
+  double volume_start = 0.0;  // Euler's theorem for the cubic volume
+  LAGREMAP_NO_UNROLL
+  for (int p = 0; p < 8; ++p)
+    volume_start += dot(start(p) - x_start_0, hex::cornerVector(start, p));
+  volume_start /= 3.0;
+  const Vec3 x_0 = loadVec3(x_n, cell_nodes(c, 0));
+  Mat3 deformation = zeroMat();
+  LAGREMAP_NO_UNROLL
+  for (int p = 0; p < 8; ++p) {
+    addOuter(deformation, 1.0 / volume_start, loadVec3(x_n, cell_nodes(c, p)) - x_0,
+             hex::cornerVector(start, p));
+  }
+  return deformation;
+}
+
 // A material with less than this fraction of its cell's mass does no pdV work
 // of its own: it takes the cell's specific heat (its share of D by mass). A
 // trace by mass has no say in the cell's energy; its volume still yields to
@@ -912,7 +933,7 @@ KOKKOS_FORCEINLINE_FUNCTION void mixedCellBudget(const State& s, Index c, double
 // sweep (StageRelaxation).
 KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, const Vec3View& x_n,
                                             const State& s, double dt_stage, Index c, double e_new,
-                                            StageRelaxation& relaxation) {
+                                            StageRelaxation& relaxation, bool staged = false) {
   int present = 0, last = 0;
   for (int k = 0; k < s.n_materials; ++k) {
     if (s.alpha_ck(c, k) > 0.0) {
@@ -959,7 +980,10 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
           jaumannUpdate(loadSym(s.S_ck0, c, k), gradient_k, material.mu, dt_stage);
       storeSym(s.S_ck, c, k, radialReturn(trial, material.yield_stress).S);
     } else if (material.strength == StrengthKind::NeoHookean) {
-      if (!deformation_known) deformation = stageDeformation(cell_nodes, x_n, s, c);
+      if (!deformation_known) {
+        deformation = staged ? stagedStageDeformation(cell_nodes, x_n, s, c)
+                             : stageDeformation(cell_nodes, x_n, s, c);
+      }
       deformation_known = true;
       Mat3 own = deformation;
       Vec3 n;
@@ -978,9 +1002,9 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
 // (docs/method.md §A4): F_cp = M_cp V_p - B_cp,
 //   m_c dV_c/dt = sum_p F_cp,  m_c dE_c/dt = sum_p F_cp . V_p,
 // and dv_c/dt = sum_p A_cp . V_p for the next time step.
-KOKKOS_INLINE_FUNCTION void updateCell(const CellNodesView& cell_nodes, const Vec3View& x_n,
-                                       const State& s, double dt_stage, Index c,
-                                       StageRelaxation& relaxation) {
+// Returns the cell's new specific internal energy.
+KOKKOS_INLINE_FUNCTION double updateCellMotion(const CellNodesView& cell_nodes, const State& s,
+                                               double dt_stage, Index c) {
   Vec3 force{0, 0, 0};
   double power = 0.0, dvdt = 0.0;
   for (int p = 0; p < 8; ++p) {
@@ -997,19 +1021,46 @@ KOKKOS_INLINE_FUNCTION void updateCell(const CellNodesView& cell_nodes, const Ve
   storeVec3(s.v_c, c, velocity);
   s.E_c(c) = total_energy;
   s.dvdt_c(c) = dvdt;
-  updateMaterials(cell_nodes, x_n, s, dt_stage, c, total_energy - 0.5 * dot(velocity, velocity),
+  return total_energy - 0.5 * dot(velocity, velocity);
+}
+
+// ... and its materials (updateMaterials).
+KOKKOS_INLINE_FUNCTION void updateCell(const CellNodesView& cell_nodes, const Vec3View& x_n,
+                                       const State& s, double dt_stage, Index c,
+                                       StageRelaxation& relaxation) {
+  updateMaterials(cell_nodes, x_n, s, dt_stage, c, updateCellMotion(cell_nodes, s, dt_stage, c),
                   relaxation);
 }
 
-inline void updateCells(const Mesh& mesh, const State& state, double dt_stage) {
+// Every cell's update: the staged form runs the cells' motion and their
+// materials as two kernels (the materials' e_new = E - |V|^2/2 from the
+// stored E and V: the same bits).
+inline void updateCells(const Mesh& mesh, const State& state, double dt_stage,
+                        KernelForm form = defaultKernelForm()) {
   const auto cell_nodes = mesh.cell_nodes;
   const auto x_n = mesh.x_n;
   const auto s = state;
+  if constexpr (kFusedKernelsBuilt) {
+    if (form == KernelForm::Fused) {
+      Kokkos::parallel_for(
+          "lagremap::cell_update::corner_forces", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
+          KOKKOS_LAMBDA(const Index c) {
+            StageRelaxation relaxation;
+            updateCell(cell_nodes, x_n, s, dt_stage, c, relaxation);
+          });
+      return;
+    }
+  }
   Kokkos::parallel_for(
       "lagremap::cell_update::corner_forces", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
+      KOKKOS_LAMBDA(const Index c) { updateCellMotion(cell_nodes, s, dt_stage, c); });
+  Kokkos::parallel_for(
+      "lagremap::cell_update::materials", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
       KOKKOS_LAMBDA(const Index c) {
+        const Vec3 velocity = loadVec3(s.v_c, c);
         StageRelaxation relaxation;
-        updateCell(cell_nodes, x_n, s, dt_stage, c, relaxation);
+        updateMaterials(cell_nodes, x_n, s, dt_stage, c, s.E_c(c) - 0.5 * dot(velocity, velocity),
+                        relaxation, true);
       });
 }
 
@@ -1047,20 +1098,23 @@ inline StepLimit updateCellsAndGeometry(const Mesh& mesh, const State& state, do
           });
     }
   }
-  updateCells(mesh, state, dt_stage);
+  updateCells(mesh, state, dt_stage, KernelForm::Staged);
+  // the mixed cells' volume sharing, then the checks or the closure on the
+  // shared volumes (a kernel each: together they held 154 registers on sm_90)
+  if (state.n_materials > 1) shareVolumeChanges(mesh, state);
   const bool z_prisms = mesh.z_prisms;
   if (what == StageEnd::ForRemap) {
     return stepLimitOverCellNodes(
         "lagremap::cell_update::shape", mesh,
         KOKKOS_LAMBDA(const NodesOfCell& nodes, StepLimit& best) {
           hex::PrismBase base{};  // (read on prisms only)
-          cellShapeForRemap(stagedShape(nodes, z_prisms, base), s, nodes.c, best);
+          cellShapeForRemap(stagedShape(nodes, z_prisms, base), s, nodes.c, best, nullptr, false);
         });
   }
   return stepLimitOverCellNodes(
       "lagremap::cell_update::geometry", mesh,
       KOKKOS_LAMBDA(const NodesOfCell& nodes, StepLimit& best) {
-        cellThermoOnNodes(nodes, z_prisms, s, controls, best, true);
+        cellThermoOnNodes(nodes, z_prisms, s, controls, best, false);
       });
 }
 
