@@ -7,34 +7,14 @@
 // to the most restrictive.
 #pragma once
 
-#include <type_traits>
-
 #include "../data/mesh.hpp"
 #include "../data/state.hpp"
 #include "constitutive.hpp"
 #include "hex.hpp"
+#include "kernel_form.hpp"
 #include "time_step.hpp"
 
 namespace lagremap {
-
-// How the per-cell work of the geometry and of a stage's end is laid out
-// (docs/method.md §7.6), the same bits either way:
-// - Fused: a cell's whole geometry (hex::CellGeometry: its 8 corners' sums,
-//   85 doubles) in one sweep over its 24 triangles, kCellLanes cells in the
-//   lanes of a vector on CPU builds; a stage's cell update and its geometry
-//   one kernel (the cell's records are in cache once).
-// - Staged: the shape, then one corner at a time from its 3 faces (4 times
-//   the face work, a small part of the live state); the cell update and the
-//   geometry two kernels. What a GPU thread runs in registers.
-// Both run on every backend (`numerics.kernels`); the default is the
-// backend's.
-// The fused form is built for host execution spaces only, so that a GPU
-// build holds no kernel that spills (docs/building.md §4).
-enum class KernelForm { Fused, Staged };
-constexpr bool kFusedKernelsBuilt = std::is_same<ExecSpace::memory_space, Kokkos::HostSpace>::value;
-inline KernelForm defaultKernelForm() {
-  return kFusedKernelsBuilt ? KernelForm::Fused : KernelForm::Staged;
-}
 
 KOKKOS_INLINE_FUNCTION void gatherCellNodes(const CellNodesView& cell_nodes, const Vec3View& x_n,
                                             Index c, Vec3 x[8]) {

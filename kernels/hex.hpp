@@ -445,9 +445,11 @@ KOKKOS_INLINE_FUNCTION PrismEdge prismEdge(double px, double py, double px_next,
           edge_x * (fy - py) - edge_y * (fx - px)};
 }
 
-// The base of the prism whose node n is at node(n), and its shape.
+// The base of the prism whose node n is at node(n), and its shape; its 4
+// edges too where `edges` is given.
 template <class NodeAt>
-KOKKOS_INLINE_FUNCTION CellShape prismBase(const NodeAt& node, PrismBase& base) {
+KOKKOS_INLINE_FUNCTION CellShape prismBase(const NodeAt& node, PrismBase& base,
+                                           PrismEdge* edges = nullptr) {
   const Vec3 origin = node(0);
   const double height = node(4).z - origin.z;
   double px[4], py[4];  // the bottom quad relative to node 0
@@ -462,6 +464,7 @@ KOKKOS_INLINE_FUNCTION CellShape prismBase(const NodeAt& node, PrismBase& base) 
   for (int k = 0; k < 4; ++k) {
     const int next = (k + 1) & 3;
     const PrismEdge edge = prismEdge(px[k], py[k], px[next], py[next], fx, fy);
+    if (edges) edges[k] = edge;
     twice_area += edge.doubled;
     weighted_x += edge.doubled * (px[k] + px[next] + fx);
     weighted_y += edge.doubled * (py[k] + py[next] + fy);
@@ -491,8 +494,21 @@ KOKKOS_INLINE_FUNCTION PrismQuarter prismQuarter(const PrismEdge& edge, double h
 }
 
 // Corner p's sums of a prism (p + 4 straight above p): its two side faces
-// (edges p - 1 and p of the base: bottom nodes p - 1, p, p + 1) and the
-// bottom (p < 4) or top face.
+// (edges p - 1 and p of the base, and their quarters) and the bottom (p < 4)
+// or top face.
+KOKKOS_INLINE_FUNCTION CornerSums prismCornerOfEdges(const PrismEdge& edge_before,
+                                                     const PrismEdge& edge, const PrismQuarter& a,
+                                                     const PrismQuarter& b, double twice_area,
+                                                     int p) {
+  const double w = (1.0 / 6.0) * (edge_before.doubled + edge.doubled + 0.25 * twice_area);
+  const double w_size = math::fabs(w);
+  return {Vec3{a.x + b.x, a.y + b.y, p < 4 ? -w : w},
+          SymMat3{a.moment_xx + b.moment_xx, a.moment_yy + b.moment_yy, w_size,
+                  a.moment_xy + b.moment_xy, 0.0, 0.0},
+          a.area + b.area + w_size};
+}
+
+// The same from the nodes (the staged form: bottom nodes p - 1, p, p + 1).
 template <class NodeAt>
 KOKKOS_INLINE_FUNCTION CornerSums prismCorner(const NodeAt& node, const PrismBase& base, int p) {
   const int q = p & 3, before = (q + 3) & 3, next = (q + 1) & 3;
@@ -502,27 +518,27 @@ KOKKOS_INLINE_FUNCTION CornerSums prismCorner(const NodeAt& node, const PrismBas
   const double px_next = x_next.x - base.origin_x, py_next = x_next.y - base.origin_y;
   const PrismEdge edge_before = prismEdge(px_before, py_before, px, py, base.fx, base.fy);
   const PrismEdge edge = prismEdge(px, py, px_next, py_next, base.fx, base.fy);
-  const PrismQuarter a = prismQuarter(edge_before, base.height);
-  const PrismQuarter b = prismQuarter(edge, base.height);
-  const double w = (1.0 / 6.0) * (edge_before.doubled + edge.doubled + 0.25 * base.twice_area);
-  const double w_size = math::fabs(w);
-  return {Vec3{a.x + b.x, a.y + b.y, p < 4 ? -w : w},
-          SymMat3{a.moment_xx + b.moment_xx, a.moment_yy + b.moment_yy, w_size,
-                  a.moment_xy + b.moment_xy, 0.0, 0.0},
-          a.area + b.area + w_size};
+  return prismCornerOfEdges(edge_before, edge, prismQuarter(edge_before, base.height),
+                            prismQuarter(edge, base.height), base.twice_area, p);
 }
 
 template <bool kCornerSums = true>
 KOKKOS_INLINE_FUNCTION void prismGeometry(const Vec3 x[8], CellGeometry& g) {
-  const auto node = [&](int n) { return x[n]; };
   PrismBase base;
-  g.shape = prismBase(node, base);
+  PrismEdge edges[4];
+  g.shape = prismBase([&](int n) { return x[n]; }, base, edges);
   if constexpr (kCornerSums) {
-    for (int p = 0; p < 8; ++p) {
-      const CornerSums corner = prismCorner(node, base, p);
+    PrismQuarter quarters[4];
+    for (int k = 0; k < 4; ++k) quarters[k] = prismQuarter(edges[k], base.height);
+    for (int p = 0; p < 4; ++p) {
+      const int before = (p + 3) & 3;
+      const CornerSums corner = prismCornerOfEdges(edges[before], edges[p], quarters[before],
+                                                   quarters[p], base.twice_area, p);
+      // node p + 4 above: the same sums, the top face's vector up (-(-w) = w)
       g.corner[p] = corner.vector;
-      g.normal_moment[p] = corner.normal_moment;
-      g.corner_face_area[p] = corner.area;
+      g.corner[p + 4] = Vec3{corner.vector.x, corner.vector.y, -corner.vector.z};
+      g.normal_moment[p] = g.normal_moment[p + 4] = corner.normal_moment;
+      g.corner_face_area[p] = g.corner_face_area[p + 4] = corner.area;
     }
   }
 }

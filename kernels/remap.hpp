@@ -34,6 +34,7 @@
 
 #include "../data/mesh.hpp"
 #include "../data/state.hpp"
+#include "kernel_form.hpp"
 #include "reconstruction.hpp"
 #include "sum_array.hpp"
 #include "swept_face.hpp"
@@ -88,6 +89,7 @@ struct RemapControls {
   double alpha_floor = 1e-10;
   bool limit = true;               // false: unlimited reconstruction (tests: linear exactness)
   bool kinetic_energy_fix = true;  // false: kinetic energy from the remapped momentum (tests)
+  KernelForm kernels = defaultKernelForm();  // numerics.kernels
 };
 
 // Per-cell work arrays of the remap, written by remapDensities and
@@ -167,11 +169,11 @@ inline void remapDensities(const State& state, const RemapLayout& layout,
 namespace detail {
 
 // The face-neighbour stencil of a cell's least-squares gradients: neighbour
-// ids (-1: none; no ghost, the gradient is one-sided at the boundary), their
-// centroid offsets and the pseudo-inverse of the normal matrix.
+// ids (-1: none; no ghost, the gradient is one-sided at the boundary) and the
+// pseudo-inverse of the normal matrix; the neighbours' centroid offsets come
+// from `offset(f)` (held or reloaded: see remapGradients).
 struct GradientStencil {
   Index nb[6];
-  Vec3 offset[6];
   SymMat3 solver;
 };
 
@@ -180,13 +182,13 @@ struct GradientStencil {
 // interface normal -grad alpha / |grad alpha| of the next Lagrangian steps
 // (unlimited: the limiter scales the gradient, and may zero it). A
 // neighbour without the material counts as "no change".
-template <class Normals>
-KOKKOS_FORCEINLINE_FUNCTION void limitedColumnGradient(const RemapLayout& layout,
-                                                       const RemapFields& fields,
-                                                       const Normals& interface_normal, Index c,
-                                                       int v, const GradientStencil& stencil,
-                                                       const VertexVectors& vertex,
-                                                       double beta_alpha, bool limit) {
+// `excursion_of(grad)`: the extremes of grad . (x_p - x_c) over the 8 vertices
+// in vertex order.
+template <class Normals, class Offset, class ExcursionOf>
+KOKKOS_FORCEINLINE_FUNCTION void limitedColumnGradient(
+    const RemapLayout& layout, const RemapFields& fields, const Normals& interface_normal, Index c,
+    int v, const GradientStencil& stencil, const Offset& offset, const ExcursionOf& excursion_of,
+    double beta_alpha, bool limit) {
   const double center = fields.primitive(c, v);
   Bounds bounds(center);
   Vec3 rhs{0.0, 0.0, 0.0};
@@ -194,7 +196,7 @@ KOKKOS_FORCEINLINE_FUNCTION void limitedColumnGradient(const RemapLayout& layout
     const Index nb = stencil.nb[f];
     if (nb < 0 || !layout.hasPrimitive(fields.density, nb, v)) continue;
     const double value = fields.primitive(nb, v);
-    rhs += (value - center) * stencil.offset[f];
+    rhs += (value - center) * offset(f);
     bounds.include(value);
   }
   const Vec3 grad = stencil.solver * rhs;
@@ -205,11 +207,7 @@ KOKKOS_FORCEINLINE_FUNCTION void limitedColumnGradient(const RemapLayout& layout
     interface_normal(c, v, 1) = normal.y;
     interface_normal(c, v, 2) = normal.z;
   }
-  // (the 8 vertices' excursions in lanes, then their extremes in vertex order)
-  double delta[kHexVertices];
-  dotEach(grad, vertex, delta);
-  VertexExcursion excursion;
-  for (int p = 0; p < kHexVertices; ++p) excursion.include(delta[p]);
+  const VertexExcursion excursion = excursion_of(grad);
   const double beta = v < layout.n_materials ? beta_alpha : 1.0;
   const double limiter = limit ? cellLimiter(excursion, center, bounds, beta) : 1.0;
   fields.gradient(c, v, 0) = limiter * grad.x;
@@ -256,6 +254,93 @@ KOKKOS_FORCEINLINE_FUNCTION void limitVelocitySlopesByGasEnergy(const RemapLayou
 
 }  // namespace detail
 
+namespace detail {
+
+// remapGradients of one cell. kHold: the neighbours' centroid offsets and
+// the vertex offsets are computed once and held for every column (the fused
+// form: the vertex offsets in lanes, VertexVectors); else they are reloaded
+// from the mesh for each column (the staged form: a GPU thread holds 60 fewer
+// doubles). The same numbers, so the same bits, either way.
+template <bool kHold, class Normals, class Materials>
+KOKKOS_FORCEINLINE_FUNCTION void cellGradients(const CellNodesView& cell_nodes,
+                                               const CellFacesView& neighbors, const Vec3View& x_n,
+                                               const Vec3View& x_c, const Normals& interface_normal,
+                                               const Materials& materials,
+                                               const RemapLayout& layout, const RemapFields& fields,
+                                               double beta_alpha, bool limit, Index c) {
+  const Vec3 centroid = loadVec3(x_c, c);
+  GradientStencil stencil;
+  Vec3 held_offset[kHold ? 6 : 1];
+  const auto offset = [&](int f) {
+    if constexpr (kHold) {
+      return held_offset[f];
+    } else {
+      return loadVec3(x_c, stencil.nb[f]) - centroid;
+    }
+  };
+  LeastSquares lsq;
+  for (int f = 0; f < 6; ++f) {
+    stencil.nb[f] = neighbors(c, f);
+    if (stencil.nb[f] < 0) continue;
+    const Vec3 d = loadVec3(x_c, stencil.nb[f]) - centroid;
+    if constexpr (kHold) held_offset[f] = d;
+    lsq.addOffset(d);
+  }
+  stencil.solver = lsq.solver();
+  const auto vertex = [&](int p) { return loadVec3(x_n, cell_nodes(c, p)) - centroid; };
+  VertexVectors held_vertex;  // (kHold: in lanes)
+  double reach2 = 0.0;
+  if constexpr (kHold) {
+    for (int p = 0; p < kHexVertices; ++p) held_vertex.set(p, vertex(p));
+    double length2[kHexVertices];
+    dotEach(held_vertex, held_vertex, length2);
+    for (int p = 0; p < kHexVertices; ++p) reach2 = length2[p] > reach2 ? length2[p] : reach2;
+  } else {
+    for (int p = 0; p < kHexVertices; ++p) {
+      const Vec3 d = vertex(p);
+      const double length2 = d.x * d.x + d.y * d.y + d.z * d.z;
+      reach2 = length2 > reach2 ? length2 : reach2;
+    }
+  }
+  fields.reach(c) = math::sqrt(reach2);
+  const auto excursion_of = [&](const Vec3& grad) {
+    VertexExcursion excursion;
+    if constexpr (kHold) {
+      double delta[kHexVertices];
+      dotEach(grad, held_vertex, delta);
+      for (int p = 0; p < kHexVertices; ++p) excursion.include(delta[p]);
+    } else {
+      for (int p = 0; p < kHexVertices; ++p) {
+        const Vec3 d = vertex(p);
+        excursion.include(grad.x * d.x + grad.y * d.y + grad.z * d.z);
+      }
+    }
+    return excursion;
+  };
+  // A mixed cell's rho^k, e^k, V and tensors are swept constant
+  // (remapUpdate): only its volume fractions need a gradient.
+  int materials_present = 0;
+  for (int k = 0; k < layout.n_materials; ++k) {
+    materials_present += fields.density(c, layout.alpha(k)) > 0.0;
+  }
+  const int reconstructed_end = materials_present > 1 ? layout.n_materials : layout.n_variables;
+  for (int v = 0; v < layout.n_variables; ++v) {
+    if (!layout.reconstructed(v)) continue;
+    if (v >= reconstructed_end || !layout.hasPrimitive(fields.density, c, v)) {
+      for (int d = 0; d < 3; ++d) fields.gradient(c, v, d) = 0.0;
+      continue;
+    }
+    limitedColumnGradient(layout, fields, interface_normal, c, v, stencil, offset, excursion_of,
+                          beta_alpha, limit);
+  }
+  // (a mixed cell's velocity slopes are zero: nothing to limit)
+  if (limit && materials_present <= 1) {
+    limitVelocitySlopesByGasEnergy(layout, fields, materials, c, reach2);
+  }
+}
+
+}  // namespace detail
+
 // Limited least-squares gradients (docs/method.md §A10) on the Lagrangian mesh, stored
 // already multiplied by their limiter: psi(x) = psi_c + grad . (x - x_c).
 // Also stores each cell's reach, the largest distance from its centroid to a
@@ -272,52 +357,21 @@ inline void remapGradients(const Mesh& mesh, const State& state, const RemapLayo
   const auto materials = state.materials;
   const double beta_alpha = controls.beta_alpha;
   const bool limit = controls.limit;
+  const auto policy = Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells);
+  if constexpr (kFusedKernelsBuilt) {
+    if (controls.kernels == KernelForm::Fused) {
+      Kokkos::parallel_for(
+          "lagremap::remap::gradients", policy, KOKKOS_LAMBDA(const Index c) {
+            detail::cellGradients<true>(cell_nodes, neighbors, x_n, x_c, interface_normal,
+                                        materials, layout, fields, beta_alpha, limit, c);
+          });
+      return;
+    }
+  }
   Kokkos::parallel_for(
-      "lagremap::remap::gradients", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
-      KOKKOS_LAMBDA(const Index c) {
-        const Vec3 centroid = loadVec3(x_c, c);
-        detail::GradientStencil stencil;
-        LeastSquares lsq;
-        for (int f = 0; f < 6; ++f) {
-          stencil.nb[f] = neighbors(c, f);
-          if (stencil.nb[f] < 0) continue;
-          stencil.offset[f] = loadVec3(x_c, stencil.nb[f]) - centroid;
-          lsq.addOffset(stencil.offset[f]);
-        }
-        stencil.solver = lsq.solver();
-        // vertex offsets from the centroid, in lanes (VertexVectors)
-        VertexVectors vertex;
-        for (int p = 0; p < kHexVertices; ++p) {
-          vertex.set(p, loadVec3(x_n, cell_nodes(c, p)) - centroid);
-        }
-        double length2[kHexVertices];
-        dotEach(vertex, vertex, length2);
-        double reach2 = 0.0;
-        for (int p = 0; p < kHexVertices; ++p) {
-          reach2 = length2[p] > reach2 ? length2[p] : reach2;
-        }
-        fields.reach(c) = math::sqrt(reach2);
-        // A mixed cell's rho^k, e^k, V and tensors are swept constant
-        // (remapUpdate): only its volume fractions need a gradient.
-        int materials_present = 0;
-        for (int k = 0; k < layout.n_materials; ++k) {
-          materials_present += fields.density(c, layout.alpha(k)) > 0.0;
-        }
-        const int reconstructed_end =
-            materials_present > 1 ? layout.n_materials : layout.n_variables;
-        for (int v = 0; v < layout.n_variables; ++v) {
-          if (!layout.reconstructed(v)) continue;
-          if (v >= reconstructed_end || !layout.hasPrimitive(fields.density, c, v)) {
-            for (int d = 0; d < 3; ++d) fields.gradient(c, v, d) = 0.0;
-            continue;
-          }
-          detail::limitedColumnGradient(layout, fields, interface_normal, c, v, stencil, vertex,
-                                        beta_alpha, limit);
-        }
-        // (a mixed cell's velocity slopes are zero: nothing to limit)
-        if (limit && materials_present <= 1) {
-          detail::limitVelocitySlopesByGasEnergy(layout, fields, materials, c, reach2);
-        }
+      "lagremap::remap::gradients", policy, KOKKOS_LAMBDA(const Index c) {
+        detail::cellGradients<false>(cell_nodes, neighbors, x_n, x_c, interface_normal, materials,
+                                     layout, fields, beta_alpha, limit, c);
       });
 }
 

@@ -10,6 +10,12 @@ fills) are left out.
 
   perf/gpu_resources.sh [ARCH]   compiles the kernels' translation units and
                                  pipes the report here (docs/performance.md)
+
+  gpu_resources.py [--bounds FILE] [REPORT...]
+    --bounds FILE: also check every kernel against FILE (perf/gpu_resource_bounds.txt:
+    lines "KERNEL REGISTERS STACK SPILL", `*` the bound of every kernel not named;
+    SPILL the spill stores plus loads, in bytes, of any instance) and exit 1 where
+    one is passed
 """
 import re
 import subprocess
@@ -65,9 +71,48 @@ def parse(lines):
     return kernels
 
 
+def read_bounds(path):
+    """{kernel or '*': (registers, stack, spill)} from a bounds file."""
+    bounds = {}
+    for number, line in enumerate(open(path, encoding="utf-8"), 1):
+        fields = line.split("#", 1)[0].split()
+        if not fields:
+            continue
+        if len(fields) != 4 or not all(f.isdigit() for f in fields[1:]):
+            sys.exit(f"gpu_resources: {path}:{number}: expected 'KERNEL REGISTERS STACK SPILL'")
+        bounds[fields[0]] = tuple(int(f) for f in fields[1:])
+    if "*" not in bounds:
+        sys.exit(f"gpu_resources: {path}: no '*' line (the bound of every kernel)")
+    return bounds
+
+
+def check(rows, bounds):
+    """Lines saying which kernels pass their bounds (worst instance of each
+    measure), and which named ones now meet the general bound."""
+    failures, met = [], []
+    for label, instances in rows:
+        worst = (max(k["registers"] for k in instances), max(k["stack"] for k in instances),
+                 max(k["spill_st"] + k["spill_ld"] for k in instances))
+        bound = bounds.get(label, bounds["*"])
+        over = [f"{name} {value} > {limit}" for name, value, limit
+                in zip(("registers", "stack", "spill"), worst, bound) if value > limit]
+        if over:
+            failures.append(f"{label}: " + ", ".join(over))
+        elif label in bounds and all(v <= b for v, b in zip(worst, bounds["*"])):
+            met.append(label)
+    return failures, met
+
+
 def main():
+    args = sys.argv[1:]
+    bounds = None
+    if args[:1] == ["--bounds"]:
+        if len(args) < 2:
+            sys.exit("gpu_resources: --bounds needs a file")
+        bounds = read_bounds(args[1])
+        args = args[2:]
     lines = []
-    for path in sys.argv[1:] or ["-"]:
+    for path in args or ["-"]:
         lines += (sys.stdin if path == "-" else open(path, encoding="utf-8")).read().splitlines()
     kernels = parse(lines)
     if not kernels:
@@ -93,6 +138,19 @@ def main():
               f"{str(k['spill_st']) + ' / ' + str(k['spill_ld']):>16}")
     spilling = sum(1 for _, inst in rows if inst[0]["spill_st"] + inst[0]["spill_ld"] > 0)
     print(f"{len(rows)} lagremap kernels ({len(ours)} instances), {spilling} spill")
+    if bounds is None:
+        return
+    failures, met = check(rows, bounds)
+    general = bounds["*"]
+    for label in met:
+        print(f"gpu_resources: {label} now meets the general bound: remove its line from the "
+              "bounds file")
+    if failures:
+        for failure in failures:
+            print(f"gpu_resources: over its bound: {failure}")
+        sys.exit(f"gpu_resources: {len(failures)} kernels over their bounds")
+    print(f"gpu_resources: every kernel within its bound ({general[0]} registers, {general[1]} B "
+          f"stack, {general[2]} B spills; {len(bounds) - 1} kernels with bounds of their own)")
 
 
 if __name__ == "__main__":

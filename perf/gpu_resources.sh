@@ -3,7 +3,11 @@
 # GPU: compiles the translation units that launch kernels with the CUDA
 # Kokkos prefix's nvcc_wrapper and -Xptxas=-v, and tabulates ptxas's report
 # per kernel (perf/gpu_resources.py; docs/performance.md).
-#   perf/gpu_resources.sh [ARCH] [SOURCE...]
+#   perf/gpu_resources.sh [--check] [ARCH] [SOURCE...]
+#     --check: also fail (exit 1) where a kernel passes its bounds in
+#             perf/gpu_resource_bounds.txt (128 registers, 256 B stack, no
+#             spill, unless the file names the kernel); CI's CUDA compile
+#             check runs it
 #     ARCH: the sm_ number (default: the prefix's, LAGREMAP_CUDA_ARCH or 90)
 #     SOURCE: translation units (default: every src/ and problems/ source
 #             that launches a kernel)
@@ -11,6 +15,11 @@
 # Kokkos prefix); about 25 s per translation unit on 2 cores.
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+check=()
+if [ "${1:-}" = --check ]; then
+  check=(--bounds "$here/perf/gpu_resource_bounds.txt")
+  shift
+fi
 arch=${1:-${LAGREMAP_CUDA_ARCH:-90}}
 shift || true
 kokkos_root=${Kokkos_ROOT:-$(cat "$here/build-cuda/kokkos-root.txt" 2>/dev/null || true)}
@@ -37,4 +46,4 @@ for source in "${sources[@]}"; do
     -c "$here/$source" -o /dev/null >>"$report" 2>&1 ||
     { echo "gpu_resources: $source did not compile:" >&2; tail -20 "$report" >&2; exit 1; }
 done
-/usr/bin/python3 "$here/perf/gpu_resources.py" "$report"
+/usr/bin/python3 "$here/perf/gpu_resources.py" "${check[@]+"${check[@]}"}" "$report"

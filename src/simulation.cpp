@@ -77,7 +77,8 @@ Simulation::Simulation(const RunOptions& options, const Problem& problem)
   }
   lagrange_->saveStartOfStep();
   if (config.remapMode()) {
-    const RemapControls controls = readRemapControls(config, state_);
+    RemapControls controls = readRemapControls(config, state_);
+    controls.kernels = numerics_.kernels;
     remap_ = makeRemapStep(mesh, state_, controls, timers_, halo_.get(), options.problem);
     lagrange_->remapFollowsEveryStep();
   }
