@@ -210,7 +210,7 @@ KOKKOS_INLINE_FUNCTION Mat3 zeroMat() {
   return {{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}};
 }
 // a (x) b accumulated with weight s: m_ij += s a_i b_j
-KOKKOS_INLINE_FUNCTION void addOuter(Mat3& m, double s, const Vec3& a, const Vec3& b) {
+KOKKOS_FORCEINLINE_FUNCTION void addOuter(Mat3& m, double s, const Vec3& a, const Vec3& b) {
   const double as[3] = {s * a.x, s * a.y, s * a.z};
   const double bs[3] = {b.x, b.y, b.z};
   for (int i = 0; i < 3; ++i)

@@ -43,8 +43,8 @@ KOKKOS_INLINE_FUNCTION Mat3 hughesWingetRotation(const Mat3& grad_v, double dt) 
   return inverse(identityMat() - half_spin) * (identityMat() + half_spin);
 }
 
-KOKKOS_INLINE_FUNCTION SymMat3 jaumannUpdate(const SymMat3& S, const Mat3& grad_v, double mu,
-                                             double dt) {
+KOKKOS_FORCEINLINE_FUNCTION SymMat3 jaumannUpdate(const SymMat3& S, const Mat3& grad_v, double mu,
+                                                  double dt) {
   const SymMat3 rotated = pushForward(hughesWingetRotation(grad_v, dt), S);  // Q S Q^T
   return dev(rotated + (2.0 * mu * dt) * dev(symPart(grad_v)));
 }

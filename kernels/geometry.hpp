@@ -75,7 +75,7 @@ KOKKOS_INLINE_FUNCTION bool takesOwnNormalStretch(const MaterialParams& material
   return false;
 }
 // ... and its interface normal, known from the last remap.
-KOKKOS_INLINE_FUNCTION bool isSolidBody(const State& s, Index c, int k, Vec3& normal) {
+KOKKOS_FORCEINLINE_FUNCTION bool isSolidBody(const State& s, Index c, int k, Vec3& normal) {
   if (s.closure == MixtureClosure::EqualStrain) return false;  // all at the cell's strain
   if (!takesOwnNormalStretch(s.materials(k), s.alpha_ck0(c, k), s.alpha_trace)) return false;
   if (c >= Index(s.n_ck.extent(0))) return false;

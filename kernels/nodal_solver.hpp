@@ -741,8 +741,8 @@ KOKKOS_INLINE_FUNCTION Mat3 velocityGradient(const CellNodesView& cell_nodes, co
 // deviator): -p^k share^k tr(L) + alpha^k S^k : L, with share^k its part of
 // the cell's volume change (shareVolumeChange; alpha^k under equal strain)
 // and the deviatoric strain rate common to all materials.
-KOKKOS_INLINE_FUNCTION double stressPower(const State& s, Index c, int k, const Mat3& L,
-                                          double volume_share) {
+KOKKOS_FORCEINLINE_FUNCTION double stressPower(const State& s, Index c, int k, const Mat3& L,
+                                               double volume_share) {
   double power = -s.p_ck(c, k) * volume_share * (L.m[0][0] + L.m[1][1] + L.m[2][2]);
   if (s.materials(k).strength != StrengthKind::None) {
     const SymMat3 S = loadSym(s.S_ck, c, k);
@@ -931,9 +931,11 @@ KOKKOS_FORCEINLINE_FUNCTION void mixedCellBudget(const State& s, Index c, double
 // the stress): it keeps its value until it is a material again.
 // `relaxation`: a mixed cell's relaxation volumes, for the geometry of the same
 // sweep (StageRelaxation).
+// kStaged: the stage deformation a corner vector at a time (the staged form).
+template <bool kStaged = false>
 KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, const Vec3View& x_n,
                                             const State& s, double dt_stage, Index c, double e_new,
-                                            StageRelaxation& relaxation, bool staged = false) {
+                                            StageRelaxation& relaxation) {
   int present = 0, last = 0;
   for (int k = 0; k < s.n_materials; ++k) {
     if (s.alpha_ck(c, k) > 0.0) {
@@ -981,8 +983,11 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
       storeSym(s.S_ck, c, k, radialReturn(trial, material.yield_stress).S);
     } else if (material.strength == StrengthKind::NeoHookean) {
       if (!deformation_known) {
-        deformation = staged ? stagedStageDeformation(cell_nodes, x_n, s, c)
-                             : stageDeformation(cell_nodes, x_n, s, c);
+        if constexpr (kStaged) {
+          deformation = stagedStageDeformation(cell_nodes, x_n, s, c);
+        } else {
+          deformation = stageDeformation(cell_nodes, x_n, s, c);
+        }
       }
       deformation_known = true;
       Mat3 own = deformation;
@@ -1059,8 +1064,8 @@ inline void updateCells(const Mesh& mesh, const State& state, double dt_stage,
       KOKKOS_LAMBDA(const Index c) {
         const Vec3 velocity = loadVec3(s.v_c, c);
         StageRelaxation relaxation;
-        updateMaterials(cell_nodes, x_n, s, dt_stage, c, s.E_c(c) - 0.5 * dot(velocity, velocity),
-                        relaxation, true);
+        updateMaterials<true>(cell_nodes, x_n, s, dt_stage, c,
+                              s.E_c(c) - 0.5 * dot(velocity, velocity), relaxation);
       });
 }
 

@@ -17,7 +17,9 @@ kokkos_root=${Kokkos_ROOT:-$(cat "$build/kokkos-root.txt" 2>/dev/null || true)}
   exit 1
 }
 # -UKokkos_DIR: the Kokkos of this call, not one an earlier configure cached.
-configure=(-DCMAKE_BUILD_TYPE=Release -DKokkos_ROOT="$kokkos_root" -UKokkos_DIR)
+# (compile_commands.json: perf/gpu_resources.sh compiles each unit with its own flags)
+configure=(-DCMAKE_BUILD_TYPE=Release -DKokkos_ROOT="$kokkos_root" -UKokkos_DIR
+  -DCMAKE_EXPORT_COMPILE_COMMANDS=ON)
 if [ "$backend" = cuda ]; then
   wrapper="$kokkos_root/bin/nvcc_wrapper"
   [ -x "$wrapper" ] || { echo "build: $kokkos_root has no bin/nvcc_wrapper (not a CUDA Kokkos?)" >&2; exit 1; }

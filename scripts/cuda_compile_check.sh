@@ -3,7 +3,9 @@
 # CUDA Kokkos, builds every target into build-cuda/ (compile and link only:
 # nothing runs, a GPU is not needed) and fails on any compiler warning from
 # lagremap's own files or on an executable without code for the chosen arch
-# (LAGREMAP_CUDA_ARCH, default 90). Without nvcc it says so and succeeds.
+# (LAGREMAP_CUDA_ARCH, default 90), or on a kernel past its registers, stack
+# or spill bound (perf/gpu_resources.sh --check). Without nvcc it says so and
+# succeeds.
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 if ! command -v nvcc >/dev/null 2>&1 && [ ! -x /usr/local/cuda/bin/nvcc ]; then
@@ -44,4 +46,13 @@ for exe in "$build/lagremap" "$build"/tests/test_* "$build"/perf/bench_*; do
   has_arch "$exe" || { echo "CUDA compile check FAILED: $exe has no sm_$arch code" >&2; exit 1; }
   checked=$((checked + 1))
 done
-echo "CUDA compile check passed: every target built in $(($(date +%s) - start)) s, $checked executables hold sm_$arch code, no warning from our sources"
+# Registers, stack and spills of every lagremap kernel against
+# perf/gpu_resource_bounds.txt (docs/building.md §4): a kernel that passes its
+# bound fails the check, so a regression shows without a GPU.
+if ! bash "$here/perf/gpu_resources.sh" --check "$arch" > "$log" 2>&1; then
+  grep -v "^gpu_resources: [a-z]*/" "$log" >&2
+  echo "CUDA compile check FAILED: GPU resources past their bounds (above)" >&2
+  exit 1
+fi
+grep -v "^gpu_resources: [a-z]*/" "$log"
+echo "CUDA compile check passed: every target built in $(($(date +%s) - start)) s, $checked executables hold sm_$arch code, no warning from our sources, every kernel within its GPU resource bound"

@@ -9,7 +9,9 @@
 # found by nvidia-smi, else LAGREMAP_CUDA_ARCH or 90) and every lagremap target
 # against it, then on the GPU runs the quick ctest set, `sedov`, `taylor --mode
 # remap --scale 0.5` and the kernel benchmarks, and writes one report folder:
-#   report/summary.txt      what ran, pass/fail, the nvidia-smi line, FOM lines
+#   report/summary.txt      what ran, pass/fail, the nvidia-smi line, the kernels'
+#                           registers, stack and spills, FOM lines (per phase too)
+#   report/gpu_resources.txt  perf/gpu_resources.sh --check for the GPU's arch
 #   report/ctest.txt        the quick tests' output
 #   report/<case>.txt       each run's stdout and stderr
 #   report/bench_*.json     per-kernel rates (Google Benchmark JSON)
@@ -97,6 +99,7 @@ rm -f "$build/CMakeCache.txt"  # every location found anew, none cached from ano
 t0=$(date +%s)
 PKG_CONFIG_LIBDIR=/nonexistent PKG_CONFIG_PATH= \
   cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release -DKokkos_ROOT="$kokkos" \
+  -DCMAKE_EXPORT_COMPILE_COMMANDS=ON \
   -DCMAKE_CXX_COMPILER="$kokkos/bin/nvcc_wrapper" \
   -DCMAKE_PREFIX_PATH="$prefix/usr;$lib/cmake" \
   -DMPI_SKIP_COMPILER_WRAPPER=ON -DMPI_C_HEADER_DIR="$lib/openmpi/include" \
@@ -117,6 +120,13 @@ elif command -v python3 >/dev/null; then
   say "gpu code of lagremap: $(python3 "$here/scripts/cuda_arches.py" "$build/lagremap" | paste -sd ';')"
 fi
 
+# registers, stack and spills per kernel for this arch (perf/gpu_resources.sh;
+# the bounds are sm_90's)
+LAGREMAP_BUILD_DIR="$build" Kokkos_ROOT="$kokkos" bash "$here/perf/gpu_resources.sh" --check \
+  "$cuda_arch" > "$report/gpu_resources.txt" 2>&1 || true
+say "gpu resources (report/gpu_resources.txt):"
+grep -v "^gpu_resources: [a-z]*/" "$report/gpu_resources.txt" | sed 's/^/  /' | tee -a "$summary"
+
 if [ $gpu -eq 0 ]; then
   say "GPU part skipped: nothing was run on a GPU"
   exit 0
@@ -136,6 +146,11 @@ run_case() {
   "$build/lagremap" "$@" --output "$work/out/$name" > "$report/$name.txt" 2>&1 || rc=$?
   say "$name (exit $rc, $((($(date +%s%N) - t0) / 1000000)) ms): $(grep '^FOM' "$report/$name.txt" || echo 'no FOM line')"
   grep -E '^check .*FAIL' "$report/$name.txt" | sed 's/^/  /' | tee -a "$summary"
+  # the FOM of each phase (summary.json: cell-steps per second of its kernels)
+  python3 -c 'import json, sys
+rates = json.load(open(sys.argv[1]))["cell_steps_per_second"]["phases"]
+print("  per phase [cell-steps/s]: " + ", ".join(f"{k} {v:.3g}" for k, v in rates.items() if v > 0))' \
+    "$work/out/$name/summary.json" 2>/dev/null | tee -a "$summary"
   [ $rc -eq 0 ] || status=1
 }
 run_case sedov --problem sedov

@@ -3,12 +3,16 @@
 three entries of nvcc 13.0's -Xptxas=-v output for sm_90 of remap_step.cpp:
 a Kokkos view copy, remapGradients' lambda, a stepLimitOverCellGeometries
 instance that spills): our two kernels with their registers, stack and spill
-bytes, the heaviest first; Kokkos' own copy left out.
+bytes, the heaviest first; Kokkos' own copy left out; and its --bounds check
+(a kernel past the general bound or its own line fails, a named kernel that
+meets the general bound is told so, a malformed file is refused).
 
   test_gpu_resources.py GPU_RESOURCES_PY REPORT
 """
+import os
 import subprocess
 import sys
+import tempfile
 
 
 def main():
@@ -27,9 +31,43 @@ def main():
         failures.append(f"kernels {list(rows)}, expected {list(expected)} (heaviest first, no Kokkos copy)")
     if not out.splitlines()[-1].startswith("2 lagremap kernels (2 instances), 1 spill"):
         failures.append("summary line: " + out.splitlines()[-1])
+    failures += bounds_failures(script, report)
     if failures:
         sys.exit("test_gpu_resources: " + "; ".join(failures))
     print("test_gpu_resources: pass")
+
+
+def bounds_failures(script, report):
+    """--bounds: over the general bound fails and names the kernel; a kernel's
+    own line lets it pass at its numbers; a named kernel that meets the general
+    bound is told to leave the file."""
+    failures = []
+    with tempfile.TemporaryDirectory() as work:
+        def run(text):
+            path = os.path.join(work, "bounds.txt")
+            with open(path, "w", encoding="utf-8") as bounds:
+                bounds.write(text)
+            return subprocess.run(["/usr/bin/python3", script, "--bounds", path, report],
+                                  capture_output=True, text=True)
+        general = run("# comment\n*  128 256 0\n")
+        if general.returncode != 1 or "stepLimitOverCellGeometries: registers 255 > 128, stack " \
+                "752 > 256, spill 2028 > 0" not in general.stdout or "remapGradients: " \
+                "registers 160 > 128" not in general.stdout:
+            failures.append("general bound not enforced: " + general.stdout + general.stderr)
+        own = run("* 128 256 0\nstepLimitOverCellGeometries 255 752 2028\nremapGradients 160 0 0\n"
+                  "computeCornerTerms 255 1032 3960\n")
+        if own.returncode != 0 or "every kernel within its bound" not in own.stdout:
+            failures.append("own bounds not honoured: " + own.stdout + own.stderr)
+        tighter = run("* 128 256 0\nstepLimitOverCellGeometries 255 752 2000\nremapGradients 160 0 0\n")
+        if tighter.returncode != 1 or "spill 2028 > 2000" not in tighter.stdout:
+            failures.append("a kernel past its own line passed: " + tighter.stdout)
+        met = run("* 256 1024 4096\nremapGradients 200 0 0\n")
+        if "remapGradients now meets the general bound" not in met.stdout:
+            failures.append("a kernel within the general bound not reported: " + met.stdout)
+        bad = run("remapGradients 160 0\n")
+        if bad.returncode == 0 or "expected 'KERNEL REGISTERS STACK SPILL'" not in bad.stderr:
+            failures.append("a malformed bounds file accepted: " + bad.stderr)
+    return failures
 
 
 if __name__ == "__main__":
