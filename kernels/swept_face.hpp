@@ -15,6 +15,7 @@
 
 #include "../data/mesh.hpp"
 #include "hex.hpp"
+#include "kernel_form.hpp"
 
 namespace lagremap {
 
@@ -253,63 +254,126 @@ inline SweptFaces allocateSweptFaces(const Mesh& mesh) {
           Vec3View("lagremap::remap::moment_r", n_regions)};
 }
 
+namespace swept {
+
+// The swept regions of cell c's faces (computeSweptFaces). kHold: the cell's
+// 16 node positions are loaded once and held (the fused form); else each
+// face loads its own (the staged form: a GPU thread holds 4 positions at a
+// time, not 16). The triangles are summed into the face's two sides by
+// selection (a triangle adds +0 to the other side, which leaves a sum that is
+// never -0 unchanged): the same bits as a branch, and no indexed pair.
+template <bool kHold>
+KOKKOS_FORCEINLINE_FUNCTION void cellSweptFaces(const CellNodesView& cell_nodes,
+                                                const CellFacesView& cell_neighbors,
+                                                const CellFacesView& cell_neighbor_face,
+                                                const Vec3View& x_lag, const Vec3View& x_target,
+                                                const RealView& dvol_r, const Vec3View& moment_r,
+                                                bool z_prisms, Index c) {
+  Vec3 held_lag[kHold ? 8 : 1], held_target[kHold ? 8 : 1];
+  if constexpr (kHold) {
+    for (int p = 0; p < 8; ++p) {
+      const Index node = cell_nodes(c, p);
+      held_lag[p] = loadVec3(x_lag, node);
+      held_target[p] = loadVec3(x_target, node);
+    }
+  }
+  const auto lag = [&](int p) {
+    if constexpr (kHold) {
+      return held_lag[p];
+    } else {
+      return loadVec3(x_lag, cell_nodes(c, p));
+    }
+  };
+  const auto target = [&](int p) {
+    if constexpr (kHold) {
+      return held_target[p];
+    } else {
+      return loadVec3(x_target, cell_nodes(c, p));
+    }
+  };
+  LAGREMAP_NO_UNROLL
+  for (int f = 0; f < 6; ++f) {
+    const Index neighbor = cell_neighbors(c, f);
+    if (neighbor >= 0 && neighbor < c) continue;  // the neighbour owns this face
+    Vec3 q_lag[4], q_target[4];
+    for (int k = 0; k < 4; ++k) {
+      q_lag[k] = lag(hex::faceNode(f, k));
+      q_target[k] = target(hex::faceNode(f, k));
+    }
+    // (the owner has the lower id: a tie goes to its given side)
+    SweptRegion gained{0.0, Vec3{0.0, 0.0, 0.0}}, given{0.0, Vec3{0.0, 0.0, 0.0}};
+    if (!(neighbor < 0 && staysInOneAxisPlane(q_lag, q_target))) {
+      const Vec3 nothing{0.0, 0.0, 0.0};
+      const auto add = [&](const SweptRegion& region) {
+        const bool gains = region.volume > 0.0;
+        gained.volume += gains ? region.volume : 0.0;
+        gained.moment += gains ? region.moment : nothing;
+        given.volume += gains ? 0.0 : region.volume;
+        given.moment += gains ? nothing : region.moment;
+      };
+      SweptRegion swept[4];
+      if (z_prisms && f < 4) {  // a side face of a prism: closed form
+        const int k = prismSideEdge(f), next = (k + 1) & 3;
+        sweptPrismSide(lag(k), lag(next), target(k), target(next), lag(4).z - lag(0).z, swept);
+        for (int t = 0; t < 4; ++t) add(swept[t]);
+      } else if (kHold) {  // the 4 triangles in lanes
+        sweptFace(q_lag, q_target, swept);
+        for (int t = 0; t < 4; ++t) add(swept[t]);
+      } else {  // one triangle at a time, its nodes reloaded
+        const Vec3 face_point_lag = 0.25 * (q_lag[0] + q_lag[1] + q_lag[2] + q_lag[3]);
+        const Vec3 face_point_target =
+            0.25 * (q_target[0] + q_target[1] + q_target[2] + q_target[3]);
+        LAGREMAP_NO_UNROLL
+        for (int t = 0; t < 4; ++t) {
+          const int a = hex::faceNode(f, t), b = hex::faceNode(f, (t + 1) & 3);
+          add(sweptTriangle(lag(a), lag(b), face_point_lag, target(a), target(b),
+                            face_point_target));
+        }
+      }
+    }
+    dvol_r(sweptRegionId(c, f, kGainedSide)) = gained.volume;
+    storeVec3(moment_r, sweptRegionId(c, f, kGainedSide), gained.moment);
+    dvol_r(sweptRegionId(c, f, kGivenSide)) = given.volume;
+    storeVec3(moment_r, sweptRegionId(c, f, kGivenSide), given.moment);
+    if (neighbor < 0) continue;
+    // the neighbour gives what we gain and gains what we give
+    const int g = cell_neighbor_face(c, f);
+    dvol_r(sweptRegionId(neighbor, g, kGivenSide)) = -gained.volume;
+    storeVec3(moment_r, sweptRegionId(neighbor, g, kGivenSide), -gained.moment);
+    dvol_r(sweptRegionId(neighbor, g, kGainedSide)) = -given.volume;
+    storeVec3(moment_r, sweptRegionId(neighbor, g, kGainedSide), -given.moment);
+  }
+}
+
+}  // namespace swept
+
 // Swept volumes and first moments of every face, by side, moving from the
 // Lagrangian node positions x_lag to the remap target x_target (the initial
-// mesh), docs/method.md §A9.
+// mesh), docs/method.md §A9. `form`: see KernelForm (the same bits).
 inline void computeSweptFaces(const Mesh& mesh, const Vec3View& x_lag, const Vec3View& x_target,
-                              const SweptFaces& swept_faces) {
+                              const SweptFaces& swept_faces,
+                              KernelForm form = defaultKernelForm()) {
   const auto cell_nodes = mesh.cell_nodes;
   const auto cell_neighbors = mesh.cell_neighbors;
   const auto cell_neighbor_face = mesh.cell_neighbor_face;
   const auto dvol_r = swept_faces.dvol_r;
   const auto moment_r = swept_faces.moment_r;
   const bool z_prisms = mesh.z_prisms;
+  const auto policy = Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells);
+  if constexpr (kFusedKernelsBuilt) {
+    if (form == KernelForm::Fused) {
+      Kokkos::parallel_for(
+          "lagremap::remap::swept_faces", policy, KOKKOS_LAMBDA(const Index c) {
+            swept::cellSweptFaces<true>(cell_nodes, cell_neighbors, cell_neighbor_face, x_lag,
+                                        x_target, dvol_r, moment_r, z_prisms, c);
+          });
+      return;
+    }
+  }
   Kokkos::parallel_for(
-      "lagremap::remap::swept_faces", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
-      KOKKOS_LAMBDA(const Index c) {
-        Vec3 x_cell_lag[8], x_cell_target[8];
-        for (int p = 0; p < 8; ++p) {
-          const Index node = cell_nodes(c, p);
-          x_cell_lag[p] = loadVec3(x_lag, node);
-          x_cell_target[p] = loadVec3(x_target, node);
-        }
-        for (int f = 0; f < 6; ++f) {
-          const Index neighbor = cell_neighbors(c, f);
-          if (neighbor >= 0 && neighbor < c) continue;  // the neighbour owns this face
-          Vec3 q_lag[4], q_target[4];
-          hex::faceNodes(x_cell_lag, f, q_lag);
-          hex::faceNodes(x_cell_target, f, q_target);
-          // (the owner has the lower id: a tie goes to its given side)
-          swept::SweptRegion side[2] = {{0.0, Vec3{0.0, 0.0, 0.0}}, {0.0, Vec3{0.0, 0.0, 0.0}}};
-          if (!(neighbor < 0 && swept::staysInOneAxisPlane(q_lag, q_target))) {
-            swept::SweptRegion swept[4];
-            if (z_prisms && f < 4) {  // a side face of a prism: closed form
-              const int k = swept::prismSideEdge(f), next = (k + 1) & 3;
-              swept::sweptPrismSide(x_cell_lag[k], x_cell_lag[next], x_cell_target[k],
-                                    x_cell_target[next], x_cell_lag[4].z - x_cell_lag[0].z, swept);
-            } else {
-              swept::sweptFace(q_lag, q_target, swept);
-            }
-            for (int k = 0; k < 4; ++k) {
-              swept::SweptRegion& into = side[swept[k].volume > 0.0 ? kGainedSide : kGivenSide];
-              into.volume += swept[k].volume;
-              into.moment += swept[k].moment;
-            }
-          }
-          for (int j = 0; j < 2; ++j) {
-            const Index r = sweptRegionId(c, f, j);
-            dvol_r(r) = side[j].volume;
-            storeVec3(moment_r, r, side[j].moment);
-          }
-          if (neighbor < 0) continue;
-          // the neighbour gives what we gain and gains what we give
-          const int g = cell_neighbor_face(c, f);
-          for (int j = 0; j < 2; ++j) {
-            const Index r = sweptRegionId(neighbor, g, 1 - j);
-            dvol_r(r) = -side[j].volume;
-            storeVec3(moment_r, r, -side[j].moment);
-          }
-        }
+      "lagremap::remap::swept_faces", policy, KOKKOS_LAMBDA(const Index c) {
+        swept::cellSweptFaces<false>(cell_nodes, cell_neighbors, cell_neighbor_face, x_lag,
+                                     x_target, dvol_r, moment_r, z_prisms, c);
       });
 }
 

@@ -57,7 +57,7 @@ RemapBoundaryFlux RemapStep::apply() {
     Kokkos::deep_copy(m_ck_saved_, state_.m_ck);
     remapDensities(state_, layout_, fields_);
     remapGradients(mesh_, state_, layout_, controls_, fields_);
-    computeSweptFaces(mesh_, mesh_.x_n, x_target_, swept_);
+    computeSweptFaces(mesh_, mesh_.x_n, x_target_, swept_, controls_.kernels);
     crossed = remapUpdate(mesh_, state_, layout_, controls_, fields_, swept_);
     Kokkos::deep_copy(mesh_.x_n, x_target_);
   }

@@ -4,6 +4,8 @@
 // single regions are exact on known shapes and against a high-order quadrature.
 #include <gtest/gtest.h>
 
+#include <cstring>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -304,6 +306,54 @@ TEST(SweptFace, SlabOfPrismsSweepsTheGeneralRegions) {
     EXPECT_NEAR(dvol(r), dvol_general(r), 1e-13 * size) << "region " << r;
     EXPECT_LT(norm(loadVec3(moment, r) - loadVec3(moment_general, r)), 1e-12 * size)
         << "region " << r;
+  }
+}
+
+// The staged form (KernelForm: each face's nodes loaded by itself, one
+// triangle at a time) gives the fused form's regions bit for bit, on twisted
+// hexahedra (free and wall boundaries) and on a slab of prisms.
+TEST(SweptFace, StagedFormSweepsTheFusedBits) {
+  const auto bits = [](const Mesh& mesh, const Vec3View& x_lag, KernelForm form) {
+    const SweptFaces swept = allocateSweptFaces(mesh);
+    computeSweptFaces(mesh, x_lag, mesh.x_n, swept, form);
+    return std::make_pair(Kokkos::create_mirror_view_and_copy(HostSpace(), swept.dvol_r),
+                          Kokkos::create_mirror_view_and_copy(HostSpace(), swept.moment_r));
+  };
+  const auto same = [](const auto& a, const auto& b) {
+    return a.span() == b.span() && std::memcmp(a.data(), b.data(), a.span() * sizeof(double)) == 0;
+  };
+  for (const bool free_boundary : {false, true}) {
+    const SweptMeshCase sc = distortedCase(free_boundary, 31u);
+    const auto staged = bits(sc.mesh, sc.x_lag, KernelForm::Staged);
+    if (!kFusedKernelsBuilt) continue;
+    const auto fused = bits(sc.mesh, sc.x_lag, KernelForm::Fused);
+    EXPECT_TRUE(same(staged.first, fused.first)) << "free " << free_boundary;
+    EXPECT_TRUE(same(staged.second, fused.second)) << "free " << free_boundary;
+  }
+  const BlockSpec block = testing::perturbedBlock(5, 4, 1, {-1.0, 0.5, 2.0}, {1.4, 2.5, 2.1}, 0.2);
+  const Mesh mesh = buildBlockMesh(block, testing::allWalls());
+  ASSERT_TRUE(mesh.z_prisms);
+  // (a View of its own: on a host backend the mirror of x_n is x_n itself)
+  Vec3View::HostMirror x_lag("lagremap::test::x_lag_host", mesh.n_nodes);
+  Kokkos::deep_copy(x_lag, Kokkos::create_mirror_view_and_copy(HostSpace(), mesh.x_n));
+  for (Index n = 0; n < mesh.n_nodes; ++n) {  // interior nodes moved in the plane
+    const int i = n % (block.nx + 1), j = (n / (block.nx + 1)) % (block.ny + 1);
+    if (i == 0 || i == block.nx || j == 0 || j == block.ny) continue;
+    x_lag(n, 0) += 0.05 * std::sin(3.0 * x_lag(n, 1));
+    x_lag(n, 1) += 0.05 * std::cos(2.0 * x_lag(n, 0));
+  }
+  Vec3View x_lag_device("lagremap::test::x_lag", mesh.n_nodes);
+  Kokkos::deep_copy(x_lag_device, x_lag);
+  const auto staged = bits(mesh, x_lag_device, KernelForm::Staged);
+  double largest = 0.0;
+  for (std::size_t r = 0; r < staged.first.extent(0); ++r) {
+    largest = std::max(largest, std::fabs(staged.first(r)));
+  }
+  EXPECT_GT(largest, 1e-4);  // it swept
+  if (kFusedKernelsBuilt) {
+    const auto fused = bits(mesh, x_lag_device, KernelForm::Fused);
+    EXPECT_TRUE(same(staged.first, fused.first));
+    EXPECT_TRUE(same(staged.second, fused.second));
   }
 }
 
