@@ -99,13 +99,21 @@ struct RemapFields {
   MatRealView primitive;            // (cell, column) primitive variable, where the cell has it
   DeviceView<Real** [3]> gradient;  // (cell, column, xyz) of the primitive, limited
   RealView reach;                   // largest centroid-vertex distance of each Lagrangian cell
+  // The staged form's per-cell work rows of remapUpdate (empty in the fused
+  // form, whose thread holds them): each cell's integrals (cell, column) and
+  // its materials' source ranges (cell, 4 m + rho_lo, rho_hi, e_lo, e_hi).
+  MatRealView integral, source_range;
 };
 
-inline RemapFields allocateRemapFields(Index n_cells, const RemapLayout& layout) {
+inline RemapFields allocateRemapFields(Index n_cells, const RemapLayout& layout,
+                                       KernelForm form = defaultKernelForm()) {
+  const Index rows = form == KernelForm::Staged ? n_cells : 0;
   return {MatRealView("lagremap::remap::density", n_cells, layout.n_variables),
           MatRealView("lagremap::remap::primitive", n_cells, layout.n_variables),
           DeviceView<Real** [3]>("lagremap::remap::gradient", n_cells, layout.n_variables),
-          RealView("lagremap::remap::reach", n_cells)};
+          RealView("lagremap::remap::reach", n_cells),
+          MatRealView("lagremap::remap::integral", rows, layout.n_variables),
+          MatRealView("lagremap::remap::source_range", rows, 4 * layout.n_materials)};
 }
 
 // Quantities the outer boundary exchanged in the sweep (mass, momentum xyz,
@@ -379,51 +387,76 @@ namespace detail {
 
 // Range of each material's density and specific energy over the cells it
 // comes from (the cell and its upwind cells): the bounds of the clean-up.
-struct SourceRange {
-  double rho_lo[kMaxMaterials], rho_hi[kMaxMaterials], e_lo[kMaxMaterials], e_hi[kMaxMaterials];
+// `Store` holds the 4 x kMaxMaterials bounds: an array of the thread's own
+// (the fused form), or a row of a View (the staged form, RemapScratch).
+template <class Store>
+struct SourceRangeOf {
+  Store bound;  // rho_lo, rho_hi, e_lo, e_hi of material m at 4 m + 0..3
 
-  KOKKOS_INLINE_FUNCTION explicit SourceRange(int n_materials) {
+  KOKKOS_FORCEINLINE_FUNCTION double& rho_lo(int m) const { return bound[4 * m]; }
+  KOKKOS_FORCEINLINE_FUNCTION double& rho_hi(int m) const { return bound[4 * m + 1]; }
+  KOKKOS_FORCEINLINE_FUNCTION double& e_lo(int m) const { return bound[4 * m + 2]; }
+  KOKKOS_FORCEINLINE_FUNCTION double& e_hi(int m) const { return bound[4 * m + 3]; }
+
+  KOKKOS_INLINE_FUNCTION void reset(int n_materials) const {
     for (int m = 0; m < n_materials; ++m) {
-      rho_lo[m] = e_lo[m] = 1e300;
-      rho_hi[m] = e_hi[m] = -1e300;
+      rho_lo(m) = e_lo(m) = 1e300;
+      rho_hi(m) = e_hi(m) = -1e300;
     }
   }
   KOKKOS_FORCEINLINE_FUNCTION void include(const RemapLayout& layout, const RemapFields& fields,
-                                           Index cell, int m) {
+                                           Index cell, int m) const {
     if (!layout.hasPrimitive(fields.density, cell, layout.mass(m))) return;
     includeSource(layout, fields, cell, m);
   }
   // The same for a cell known to have material m's density (a volume and a
   // mass, RemapLayout::hasPrimitive).
   KOKKOS_FORCEINLINE_FUNCTION void includeSource(const RemapLayout& layout,
-                                                 const RemapFields& fields, Index cell, int m) {
+                                                 const RemapFields& fields, Index cell,
+                                                 int m) const {
     const double rho = fields.primitive(cell, layout.mass(m));
     const double e = fields.primitive(cell, layout.energy(m));
-    rho_lo[m] = rho < rho_lo[m] ? rho : rho_lo[m];
-    rho_hi[m] = rho > rho_hi[m] ? rho : rho_hi[m];
-    e_lo[m] = e < e_lo[m] ? e : e_lo[m];
-    e_hi[m] = e > e_hi[m] ? e : e_hi[m];
+    rho_lo(m) = rho < rho_lo(m) ? rho : rho_lo(m);
+    rho_hi(m) = rho > rho_hi(m) ? rho : rho_hi(m);
+    e_lo(m) = e < e_lo(m) ? e : e_lo(m);
+    e_hi(m) = e > e_hi(m) ? e : e_hi(m);
   }
 };
 
-// A region swept across the outer boundary takes the cell's own state (zero
-// gradient); what it carries is booked as crossed by the owner of the cell.
-KOKKOS_FORCEINLINE_FUNCTION void fluxOuterRegion(const RemapLayout& layout,
-                                                 const RemapFields& fields, Index c, double dvol,
-                                                 bool owned, double integral[],
-                                                 RemapBoundaryFlux& crossed) {
+// A row of a View as an array (the staged form's per-cell work arrays).
+struct RowOf {
+  MatRealView view;
+  Index row;
+  KOKKOS_FORCEINLINE_FUNCTION double& operator[](int i) const { return view(row, i); }
+};
+
+// What a region swept across the outer boundary carries out of cell c: it
+// takes the cell's own state (zero gradient), booked as crossed (mass,
+// momentum, total energy).
+KOKKOS_FORCEINLINE_FUNCTION void bookCrossing(const RemapLayout& layout, const RemapFields& fields,
+                                              Index c, double dvol, RemapBoundaryFlux& crossed) {
   const auto& q = fields.density;
-  for (int v = 0; v < layout.n_variables; ++v) integral[v] += dvol * q(c, v);
   double mass = 0.0, energy = dvol * q(c, layout.kinetic());
   for (int m = 0; m < layout.n_materials; ++m) {
     mass += dvol * q(c, layout.mass(m));
     energy += dvol * q(c, layout.energy(m));
   }
-  if (owned) {  // (a ghost's crossing is booked by its owner)
-    crossed.v[0] += mass;
-    for (int d = 0; d < 3; ++d) crossed.v[1 + d] += dvol * q(c, layout.momentum(d));
-    crossed.v[4] += energy;
-  }
+  crossed.v[0] += mass;
+  for (int d = 0; d < 3; ++d) crossed.v[1 + d] += dvol * q(c, layout.momentum(d));
+  crossed.v[4] += energy;
+}
+
+// The region's integrals, and its crossing booked by the owner of the cell
+// (`book`; the staged form books every crossing in a kernel of its own,
+// remapBoundaryFlux).
+template <class Integral>
+KOKKOS_FORCEINLINE_FUNCTION void fluxOuterRegion(const RemapLayout& layout,
+                                                 const RemapFields& fields, Index c, double dvol,
+                                                 bool book, const Integral& integral,
+                                                 RemapBoundaryFlux& crossed) {
+  const auto& q = fields.density;
+  for (int v = 0; v < layout.n_variables; ++v) integral[v] += dvol * q(c, v);
+  if (book) bookCrossing(layout, fields, c, dvol, crossed);
 }
 
 // Lever limit (docs/method.md §5.2): the slopes are evaluated at the region's
@@ -466,11 +499,12 @@ KOKKOS_FORCEINLINE_FUNCTION double boundedEnergyFlux(const RemapLayout& layout,
 // centroid, V_r = V_up + grad V . lever / dV. From a mixed upwind cell rho^k,
 // e^k and V are taken constant (their slopes would carry the cell's whole
 // (alpha rho)_up into a region that may hold a sliver of the material).
+template <class Integral, class Range>
 KOKKOS_FORCEINLINE_FUNCTION void fluxInteriorRegion(const RemapLayout& layout,
                                                     const RemapFields& fields, Index c, Index nb,
                                                     Index up, double dvol, const Vec3& lever,
-                                                    bool limit, double integral[],
-                                                    SourceRange& range) {
+                                                    bool limit, const Integral& integral,
+                                                    const Range& range) {
   const auto& q = fields.density;
   const auto& w = fields.primitive;
   auto slope = [&](int v) {  // limited gradient of column v's primitive . lever
@@ -528,13 +562,14 @@ KOKKOS_FORCEINLINE_FUNCTION void fluxInteriorRegion(const RemapLayout& layout,
 // too (the excess internal energy goes to the heaviest material); traces
 // below alpha_floor join the main material; the fractions are renormalised.
 // Nothing is lost: mass and energy only move between materials.
-template <class MaterialTable>
+// (Integral, Range, Array: the fused form's arrays or the staged form's rows)
+template <class MaterialTable, class Integral, class Range, class Array>
 KOKKOS_FORCEINLINE_FUNCTION void cleanUpMaterials(const RemapLayout& layout,
                                                   const MaterialTable& materials,
-                                                  const double integral[], double volume,
-                                                  const SourceRange& range, double alpha_floor,
-                                                  double alpha[], double mass[],
-                                                  double internal[]) {
+                                                  const Integral& integral, double volume,
+                                                  const Range& range, double alpha_floor,
+                                                  const Array& alpha, const Array& mass,
+                                                  const Array& internal) {
   const int n_materials = layout.n_materials;
   int main_material = 0, heaviest = 0;
   for (int k = 0; k < n_materials; ++k) {
@@ -546,18 +581,18 @@ KOKKOS_FORCEINLINE_FUNCTION void cleanUpMaterials(const RemapLayout& layout,
     if (mass[k] > mass[heaviest]) heaviest = k;
   }
   for (int k = 0; k < n_materials; ++k) {
-    if (!(alpha[k] > 0.0 && mass[k] > 0.0) || !(range.rho_hi[k] >= range.rho_lo[k])) continue;
+    if (!(alpha[k] > 0.0 && mass[k] > 0.0) || !(range.rho_hi(k) >= range.rho_lo(k))) continue;
     const double rho = mass[k] / (alpha[k] * volume);
-    if (rho < range.rho_lo[k] || rho > range.rho_hi[k]) {
-      alpha[k] = mass[k] / ((rho < range.rho_lo[k] ? range.rho_lo[k] : range.rho_hi[k]) * volume);
+    if (rho < range.rho_lo(k) || rho > range.rho_hi(k)) {
+      alpha[k] = mass[k] / ((rho < range.rho_lo(k) ? range.rho_lo(k) : range.rho_hi(k)) * volume);
       alpha[k] = alpha[k] > 1.0 ? 1.0 : alpha[k];
     }
     // (the heaviest: the `ball`'s near-vacuum gas cannot take an aluminium
     // trace's excess, which took it to 1e6 J/kg or below zero by volume)
     if (k == heaviest) continue;
     const double e = internal[k] / mass[k];
-    if (e < range.e_lo[k] || e > range.e_hi[k]) {
-      const double bounded = mass[k] * (e < range.e_lo[k] ? range.e_lo[k] : range.e_hi[k]);
+    if (e < range.e_lo(k) || e > range.e_hi(k)) {
+      const double bounded = mass[k] * (e < range.e_lo(k) ? range.e_lo(k) : range.e_hi(k));
       internal[heaviest] += internal[k] - bounded;
       internal[k] = bounded;
     }
@@ -597,10 +632,12 @@ KOKKOS_FORCEINLINE_FUNCTION void cleanUpMaterials(const RemapLayout& layout,
 // remapped kinetic energy is kept and its difference to |m V|^2 / 2m goes to
 // the internal energies by mass fraction, so the total energy is remapped
 // conservatively; each tensor is alpha^k T^k over the remapped alpha^k volume.
+// (internal: read before e^k is stored, so it may be the row of e^k itself)
+template <class Integral, class Array>
 KOKKOS_FORCEINLINE_FUNCTION void storeRemappedCell(const State& s, const RemapLayout& layout,
-                                                   Index c, const double integral[],
-                                                   const double alpha[], const double mass[],
-                                                   double internal[], bool kinetic_energy_fix) {
+                                                   Index c, const Integral& integral,
+                                                   const Array& alpha, const Array& mass,
+                                                   const Array& internal, bool kinetic_energy_fix) {
   const int n_materials = layout.n_materials;
   double cell_mass = 0.0;
   for (int k = 0; k < n_materials; ++k) cell_mass += mass[k];
@@ -637,6 +674,56 @@ KOKKOS_FORCEINLINE_FUNCTION void storeRemappedCell(const State& s, const RemapLa
 
 }  // namespace detail
 
+namespace detail {
+
+// remapUpdate of cell c with its work arrays (the fused form's own, or the
+// staged form's rows: RemapFields::integral and source_range, the state's
+// alpha^k, m^k and e^k rows for alpha, mass and internal energy, which no
+// other cell reads in the kernel). The same arithmetic, so the same bits.
+template <class Integral, class Range, class Array>
+KOKKOS_FORCEINLINE_FUNCTION void remapCell(const State& s, const CellFacesView& neighbors,
+                                           bool book_crossing, const RemapLayout& layout,
+                                           const RemapFields& fields, const SweptFaces& swept,
+                                           bool limit, double alpha_floor, bool kinetic_energy_fix,
+                                           Index c, const Integral& integral, const Range& range,
+                                           const Array& alpha, const Array& mass,
+                                           const Array& internal, RemapBoundaryFlux& crossed) {
+  // integrals over the Lagrangian cell, then the fluxes of its regions
+  const double volume_lag = s.vol_c(c);
+  for (int v = 0; v < layout.n_variables; ++v) integral[v] = fields.density(c, v) * volume_lag;
+  range.reset(layout.n_materials);
+  for (int m = 0; m < layout.n_materials; ++m) range.include(layout, fields, c, m);
+  double volume = volume_lag;
+  for (int f = 0; f < 6; ++f) {
+    const Index nb = neighbors(c, f);
+    for (int side = 0; side < 2; ++side) {
+      const Index r = sweptRegionId(c, f, side);
+      const double dvol = swept.dvol_r(r);
+      volume += dvol;
+      if (nb < 0) {  // nothing crosses a wall (dV = 0 there)
+        if (dvol != 0.0) {
+          fluxOuterRegion(layout, fields, c, dvol, book_crossing, integral, crossed);
+        }
+        continue;
+      }
+      // A region of no volume carries nothing once its lever is limited
+      // (and is no source of the clean-up bounds); unlimited, its first
+      // moment still carries the linear part.
+      if (dvol == 0.0 && limit) continue;
+      // upwind: the neighbour for the gained side, as on the other side
+      const Index up = side == kGainedSide ? nb : c;
+      Vec3 lever = loadVec3(swept.moment_r, r) - dvol * loadVec3(s.x_c, up);
+      if (limit) lever = limitedLever(lever, fields.reach(up), dvol);
+      fluxInteriorRegion(layout, fields, c, nb, up, dvol, lever, limit, integral, range);
+    }
+  }
+  cleanUpMaterials(layout, s.materials, integral, volume, range, alpha_floor, alpha, mass,
+                   internal);
+  storeRemappedCell(s, layout, c, integral, alpha, mass, internal, kinetic_energy_fix);
+}
+
+}  // namespace detail
+
 // Sum of the upwind fluxes of the cell's 12 face-side regions, the new state on
 // the initial mesh, clean-up and kinetic-energy fix (docs/method.md §A9-A11). Returns what
 // crossed the outer boundary.
@@ -649,50 +736,50 @@ inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state,
   const bool limit = controls.limit;
   const double alpha_floor = controls.alpha_floor;
   const bool kinetic_energy_fix = controls.kinetic_energy_fix;
+  const auto policy = Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells);
   RemapBoundaryFlux boundary;
+  if constexpr (kFusedKernelsBuilt) {
+    if (controls.kernels == KernelForm::Fused) {  // the thread's own work arrays
+      Kokkos::parallel_reduce(
+          "lagremap::remap::fluxes_and_update", policy,
+          KOKKOS_LAMBDA(const Index c, RemapBoundaryFlux& crossed) {
+            double integral[kMaxRemapVariables], bounds[4 * kMaxMaterials];
+            double alpha[kMaxMaterials], mass[kMaxMaterials], internal[kMaxMaterials];
+            detail::remapCell(s, neighbors, owned(c), layout, fields, swept, limit, alpha_floor,
+                              kinetic_energy_fix, c, +integral,
+                              detail::SourceRangeOf<double*>{bounds}, +alpha, +mass, +internal,
+                              crossed);
+          },
+          boundary);
+      return boundary;
+    }
+  }
+  // the staged form: the crossings first (a reduction of their own), then
+  // the update, which holds no reduction value
+  const auto dvol_r = swept.dvol_r;
   Kokkos::parallel_reduce(
-      "lagremap::remap::fluxes_and_update", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
+      "lagremap::remap::boundary_flux", policy,
       KOKKOS_LAMBDA(const Index c, RemapBoundaryFlux& crossed) {
-        // integrals over the Lagrangian cell, then the fluxes of its regions
-        double integral[kMaxRemapVariables];
-        const double volume_lag = s.vol_c(c);
-        for (int v = 0; v < layout.n_variables; ++v) {
-          integral[v] = fields.density(c, v) * volume_lag;
-        }
-        detail::SourceRange range(layout.n_materials);
-        for (int m = 0; m < layout.n_materials; ++m) range.include(layout, fields, c, m);
-        double volume = volume_lag;
+        if (!owned(c)) return;  // (a ghost's crossing is booked by its owner)
         for (int f = 0; f < 6; ++f) {
-          const Index nb = neighbors(c, f);
+          if (neighbors(c, f) >= 0) continue;
           for (int side = 0; side < 2; ++side) {
-            const Index r = sweptRegionId(c, f, side);
-            const double dvol = swept.dvol_r(r);
-            volume += dvol;
-            if (nb < 0) {  // nothing crosses a wall (dV = 0 there)
-              if (dvol != 0.0) {
-                detail::fluxOuterRegion(layout, fields, c, dvol, owned(c), integral, crossed);
-              }
-              continue;
-            }
-            // A region of no volume carries nothing once its lever is limited
-            // (and is no source of the clean-up bounds); unlimited, its first
-            // moment still carries the linear part.
-            if (dvol == 0.0 && limit) continue;
-            // upwind: the neighbour for the gained side, as on the other side
-            const Index up = side == kGainedSide ? nb : c;
-            Vec3 lever = loadVec3(swept.moment_r, r) - dvol * loadVec3(s.x_c, up);
-            if (limit) lever = detail::limitedLever(lever, fields.reach(up), dvol);
-            detail::fluxInteriorRegion(layout, fields, c, nb, up, dvol, lever, limit, integral,
-                                       range);
+            const double dvol = dvol_r(sweptRegionId(c, f, side));
+            if (dvol != 0.0) detail::bookCrossing(layout, fields, c, dvol, crossed);
           }
         }
-        double alpha[kMaxMaterials], mass[kMaxMaterials], internal[kMaxMaterials];
-        detail::cleanUpMaterials(layout, s.materials, integral, volume, range, alpha_floor, alpha,
-                                 mass, internal);
-        detail::storeRemappedCell(s, layout, c, integral, alpha, mass, internal,
-                                  kinetic_energy_fix);
       },
       boundary);
+  const auto integral = fields.integral, source_range = fields.source_range;
+  Kokkos::parallel_for(
+      "lagremap::remap::fluxes_and_update", policy, KOKKOS_LAMBDA(const Index c) {
+        using detail::RowOf;
+        RemapBoundaryFlux unused;
+        detail::remapCell(s, neighbors, false, layout, fields, swept, limit, alpha_floor,
+                          kinetic_energy_fix, c, RowOf{integral, c},
+                          detail::SourceRangeOf<RowOf>{RowOf{source_range, c}},
+                          RowOf{s.alpha_ck, c}, RowOf{s.m_ck, c}, RowOf{s.e_ck, c}, unused);
+      });
   return boundary;
 }
 

@@ -40,7 +40,7 @@ RemapStep::RemapStep(Mesh& mesh, State& state, const RemapControls& controls, Ph
   x_target_ = Vec3View("lagremap::remap::x_target", mesh.n_nodes);
   Kokkos::deep_copy(x_target_, mesh.x_n);
   target_geometry_ = fixedMeshGeometry(mesh);
-  fields_ = allocateRemapFields(n_cells, layout_);
+  fields_ = allocateRemapFields(n_cells, layout_, controls.kernels);
   swept_ = allocateSweptFaces(mesh);
   m_c_saved_ = RealView("lagremap::remap::m_c_saved", n_cells);
   alpha_ck_saved_ = MatRealView("lagremap::remap::alpha_ck_saved", n_cells, state.n_materials);
