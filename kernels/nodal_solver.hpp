@@ -931,11 +931,25 @@ KOKKOS_FORCEINLINE_FUNCTION void mixedCellBudget(const State& s, Index c, double
 // the stress): it keeps its value until it is a material again.
 // `relaxation`: a mixed cell's relaxation volumes, for the geometry of the same
 // sweep (StageRelaxation).
-// kStaged: the stage deformation a corner vector at a time (the staged form).
-template <bool kStaged = false>
+// What updateMaterials does: the fused form all of it in one kernel, the
+// staged form each part in a kernel of its own (the energies first: the
+// deviators' updates read nothing they write, and they read the start-of-
+// stage deviators the energies' stress power takes).
+enum MaterialParts : int {
+  kMaterialEnergies = 1,  // e^k (and a mixed cell's budget)
+  kHypoElasticParts = 2,  // hypo-elastic deviators
+  kNeoHookeanParts = 4,   // Neo-Hookean B (the stage deformation a corner vector at a time)
+  kAllMaterialParts = 7,  // the fused form
+};
+
+template <int kParts = kAllMaterialParts>
 KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, const Vec3View& x_n,
                                             const State& s, double dt_stage, Index c, double e_new,
                                             StageRelaxation& relaxation) {
+  constexpr bool kEnergies = (kParts & kMaterialEnergies) != 0;
+  constexpr bool kHypo = (kParts & kHypoElasticParts) != 0;
+  constexpr bool kNeo = (kParts & kNeoHookeanParts) != 0;
+  constexpr bool kStaged = kParts != kAllMaterialParts;
   int present = 0, last = 0;
   for (int k = 0; k < s.n_materials; ++k) {
     if (s.alpha_ck(c, k) > 0.0) {
@@ -944,13 +958,23 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
     }
   }
   const bool mixed = present > 1;
-  if (!mixed) s.e_ck(c, last) = e_new;
+  if (kEnergies && !mixed) s.e_ck(c, last) = e_new;
   // a pure fluid cell has no deviator to update (whatever its neighbours)
   if (!mixed && s.materials(last).strength == StrengthKind::None) return;
+  if constexpr (!kHypo && !kNeo) {
+    if (!mixed) return;  // (only a mixed cell's budget is left)
+  }
   const Mat3 gradient = velocityGradient(cell_nodes, s, c);
   const double threshold = mixed ? s.alpha_trace : 0.0;
   detail::MixedCellBudget budget;
-  if (mixed) detail::mixedCellBudget(s, c, e_new, gradient, dt_stage, budget, relaxation);
+  if (mixed) {
+    if constexpr (kEnergies) {
+      detail::mixedCellBudget(s, c, e_new, gradient, dt_stage, budget, relaxation);
+    } else {  // the own volume ratios alone (the same numbers)
+      detail::ownVolumeRatios(s, c, dt_stage * s.vol_c(c) * trace(gradient), budget.own_ratio,
+                              relaxation);
+    }
+  }
   bool deformation_known = false;
   Mat3 deformation = zeroMat();
   for (int k = 0; k < s.n_materials; ++k) {
@@ -958,7 +982,7 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
     if (!(alpha > 0.0)) continue;
     const bool trace = alpha < threshold;
     const double own_ratio = mixed ? budget.own_ratio[k] : 1.0;
-    if (mixed) {
+    if (kEnergies && mixed) {
       const double work =
           trace
               ? 0.0
@@ -970,18 +994,18 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
     }
     const MaterialParams& material = s.materials(k);
     if (trace) {
-      if (material.strength == StrengthKind::HypoElastic) {
+      if (kHypo && material.strength == StrengthKind::HypoElastic) {
         storeSym(s.S_ck, c, k, loadSym(s.S_ck0, c, k));
-      } else if (material.strength == StrengthKind::NeoHookean) {
+      } else if (kNeo && material.strength == StrengthKind::NeoHookean) {
         storeSym(s.B_ck, c, k, loadSym(s.B_ck0, c, k));
       }
-    } else if (material.strength == StrengthKind::HypoElastic) {
+    } else if (kHypo && material.strength == StrengthKind::HypoElastic) {
       const Mat3 gradient_k =
           detail::materialGradient(s, c, k, mixed, gradient, own_ratio, dt_stage);
       const SymMat3 trial =
           jaumannUpdate(loadSym(s.S_ck0, c, k), gradient_k, material.mu, dt_stage);
       storeSym(s.S_ck, c, k, radialReturn(trial, material.yield_stress).S);
-    } else if (material.strength == StrengthKind::NeoHookean) {
+    } else if (kNeo && material.strength == StrengthKind::NeoHookean) {
       if (!deformation_known) {
         if constexpr (kStaged) {
           deformation = stagedStageDeformation(cell_nodes, x_n, s, c);
@@ -1037,6 +1061,22 @@ KOKKOS_INLINE_FUNCTION void updateCell(const CellNodesView& cell_nodes, const Ve
                   relaxation);
 }
 
+// One part of every cell's materials' update (the staged form), from the
+// cell's stored E and V.
+template <int kParts>
+void updateMaterialParts(const char* label, const Mesh& mesh, const State& state, double dt_stage) {
+  const auto cell_nodes = mesh.cell_nodes;
+  const auto x_n = mesh.x_n;
+  const auto s = state;
+  Kokkos::parallel_for(
+      label, Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells), KOKKOS_LAMBDA(const Index c) {
+        const Vec3 velocity = loadVec3(s.v_c, c);
+        StageRelaxation relaxation;
+        updateMaterials<kParts>(cell_nodes, x_n, s, dt_stage, c,
+                                s.E_c(c) - 0.5 * dot(velocity, velocity), relaxation);
+      });
+}
+
 // Every cell's update: the staged form runs the cells' motion and their
 // materials as two kernels (the materials' e_new = E - |V|^2/2 from the
 // stored E and V: the same bits).
@@ -1059,14 +1099,18 @@ inline void updateCells(const Mesh& mesh, const State& state, double dt_stage,
   Kokkos::parallel_for(
       "lagremap::cell_update::corner_forces", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
       KOKKOS_LAMBDA(const Index c) { updateCellMotion(cell_nodes, s, dt_stage, c); });
-  Kokkos::parallel_for(
-      "lagremap::cell_update::materials", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
-      KOKKOS_LAMBDA(const Index c) {
-        const Vec3 velocity = loadVec3(s.v_c, c);
-        StageRelaxation relaxation;
-        updateMaterials<true>(cell_nodes, x_n, s, dt_stage, c,
-                              s.E_c(c) - 0.5 * dot(velocity, velocity), relaxation);
-      });
+  // the materials' energies, then their deviators (hypo-elastic S, Neo-Hookean
+  // B), each a kernel of its own
+  updateMaterialParts<kMaterialEnergies>("lagremap::cell_update::material_energies", mesh, state,
+                                         dt_stage);
+  if (state.has_solids) {
+    updateMaterialParts<kHypoElasticParts>("lagremap::cell_update::hypo_elastic", mesh, state,
+                                           dt_stage);
+  }
+  if (state.has_neo_hookean) {
+    updateMaterialParts<kNeoHookeanParts>("lagremap::cell_update::neo_hookean", mesh, state,
+                                          dt_stage);
+  }
 }
 
 // The end of a stage in one sweep: each cell's update, then its geometry and
