@@ -387,39 +387,51 @@ namespace detail {
 
 // Range of each material's density and specific energy over the cells it
 // comes from (the cell and its upwind cells): the bounds of the clean-up.
-// `Store` holds the 4 x kMaxMaterials bounds: an array of the thread's own
-// (the fused form), or a row of a View (the staged form, RemapScratch).
+// `Store` holds them (rho_lo, rho_hi, e_lo, e_hi: bound(0..3, m)): the
+// thread's own arrays in the fused form (SourceBounds), a row of a View in
+// the staged form (SourceBoundsRow, RemapFields::source_range).
 template <class Store>
 struct SourceRangeOf {
-  Store bound;  // rho_lo, rho_hi, e_lo, e_hi of material m at 4 m + 0..3
+  Store bound;
 
-  KOKKOS_FORCEINLINE_FUNCTION double& rho_lo(int m) const { return bound[4 * m]; }
-  KOKKOS_FORCEINLINE_FUNCTION double& rho_hi(int m) const { return bound[4 * m + 1]; }
-  KOKKOS_FORCEINLINE_FUNCTION double& e_lo(int m) const { return bound[4 * m + 2]; }
-  KOKKOS_FORCEINLINE_FUNCTION double& e_hi(int m) const { return bound[4 * m + 3]; }
+  KOKKOS_FORCEINLINE_FUNCTION double& rho_lo(int m) { return bound(0, m); }
+  KOKKOS_FORCEINLINE_FUNCTION double& rho_hi(int m) { return bound(1, m); }
+  KOKKOS_FORCEINLINE_FUNCTION double& e_lo(int m) { return bound(2, m); }
+  KOKKOS_FORCEINLINE_FUNCTION double& e_hi(int m) { return bound(3, m); }
 
-  KOKKOS_INLINE_FUNCTION void reset(int n_materials) const {
+  KOKKOS_INLINE_FUNCTION void reset(int n_materials) {
     for (int m = 0; m < n_materials; ++m) {
       rho_lo(m) = e_lo(m) = 1e300;
       rho_hi(m) = e_hi(m) = -1e300;
     }
   }
   KOKKOS_FORCEINLINE_FUNCTION void include(const RemapLayout& layout, const RemapFields& fields,
-                                           Index cell, int m) const {
+                                           Index cell, int m) {
     if (!layout.hasPrimitive(fields.density, cell, layout.mass(m))) return;
     includeSource(layout, fields, cell, m);
   }
   // The same for a cell known to have material m's density (a volume and a
   // mass, RemapLayout::hasPrimitive).
   KOKKOS_FORCEINLINE_FUNCTION void includeSource(const RemapLayout& layout,
-                                                 const RemapFields& fields, Index cell,
-                                                 int m) const {
+                                                 const RemapFields& fields, Index cell, int m) {
     const double rho = fields.primitive(cell, layout.mass(m));
     const double e = fields.primitive(cell, layout.energy(m));
     rho_lo(m) = rho < rho_lo(m) ? rho : rho_lo(m);
     rho_hi(m) = rho > rho_hi(m) ? rho : rho_hi(m);
     e_lo(m) = e < e_lo(m) ? e : e_lo(m);
     e_hi(m) = e > e_hi(m) ? e : e_hi(m);
+  }
+};
+
+struct SourceBounds {
+  double value[4][kMaxMaterials];
+  KOKKOS_FORCEINLINE_FUNCTION double& operator()(int i, int m) { return value[i][m]; }
+};
+struct SourceBoundsRow {
+  MatRealView view;
+  Index row;
+  KOKKOS_FORCEINLINE_FUNCTION double& operator()(int i, int m) const {
+    return view(row, 4 * m + i);
   }
 };
 
@@ -452,7 +464,7 @@ KOKKOS_FORCEINLINE_FUNCTION void bookCrossing(const RemapLayout& layout, const R
 template <class Integral>
 KOKKOS_FORCEINLINE_FUNCTION void fluxOuterRegion(const RemapLayout& layout,
                                                  const RemapFields& fields, Index c, double dvol,
-                                                 bool book, const Integral& integral,
+                                                 bool book, Integral& integral,
                                                  RemapBoundaryFlux& crossed) {
   const auto& q = fields.density;
   for (int v = 0; v < layout.n_variables; ++v) integral[v] += dvol * q(c, v);
@@ -503,8 +515,7 @@ template <class Integral, class Range>
 KOKKOS_FORCEINLINE_FUNCTION void fluxInteriorRegion(const RemapLayout& layout,
                                                     const RemapFields& fields, Index c, Index nb,
                                                     Index up, double dvol, const Vec3& lever,
-                                                    bool limit, const Integral& integral,
-                                                    const Range& range) {
+                                                    bool limit, Integral& integral, Range& range) {
   const auto& q = fields.density;
   const auto& w = fields.primitive;
   auto slope = [&](int v) {  // limited gradient of column v's primitive . lever
@@ -567,9 +578,8 @@ template <class MaterialTable, class Integral, class Range, class Array>
 KOKKOS_FORCEINLINE_FUNCTION void cleanUpMaterials(const RemapLayout& layout,
                                                   const MaterialTable& materials,
                                                   const Integral& integral, double volume,
-                                                  const Range& range, double alpha_floor,
-                                                  const Array& alpha, const Array& mass,
-                                                  const Array& internal) {
+                                                  Range& range, double alpha_floor, Array& alpha,
+                                                  Array& mass, Array& internal) {
   const int n_materials = layout.n_materials;
   int main_material = 0, heaviest = 0;
   for (int k = 0; k < n_materials; ++k) {
@@ -637,7 +647,7 @@ template <class Integral, class Array>
 KOKKOS_FORCEINLINE_FUNCTION void storeRemappedCell(const State& s, const RemapLayout& layout,
                                                    Index c, const Integral& integral,
                                                    const Array& alpha, const Array& mass,
-                                                   const Array& internal, bool kinetic_energy_fix) {
+                                                   Array& internal, bool kinetic_energy_fix) {
   const int n_materials = layout.n_materials;
   double cell_mass = 0.0;
   for (int k = 0; k < n_materials; ++k) cell_mass += mass[k];
@@ -685,9 +695,9 @@ KOKKOS_FORCEINLINE_FUNCTION void remapCell(const State& s, const CellFacesView& 
                                            bool book_crossing, const RemapLayout& layout,
                                            const RemapFields& fields, const SweptFaces& swept,
                                            bool limit, double alpha_floor, bool kinetic_energy_fix,
-                                           Index c, const Integral& integral, const Range& range,
-                                           const Array& alpha, const Array& mass,
-                                           const Array& internal, RemapBoundaryFlux& crossed) {
+                                           Index c, Integral& integral, Range& range, Array& alpha,
+                                           Array& mass, Array& internal,
+                                           RemapBoundaryFlux& crossed) {
   // integrals over the Lagrangian cell, then the fluxes of its regions
   const double volume_lag = s.vol_c(c);
   for (int v = 0; v < layout.n_variables; ++v) integral[v] = fields.density(c, v) * volume_lag;
@@ -743,11 +753,11 @@ inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state,
       Kokkos::parallel_reduce(
           "lagremap::remap::fluxes_and_update", policy,
           KOKKOS_LAMBDA(const Index c, RemapBoundaryFlux& crossed) {
-            double integral[kMaxRemapVariables], bounds[4 * kMaxMaterials];
+            double integral[kMaxRemapVariables];
+            detail::SourceRangeOf<detail::SourceBounds> range;
             double alpha[kMaxMaterials], mass[kMaxMaterials], internal[kMaxMaterials];
             detail::remapCell(s, neighbors, owned(c), layout, fields, swept, limit, alpha_floor,
-                              kinetic_energy_fix, c, +integral,
-                              detail::SourceRangeOf<double*>{bounds}, +alpha, +mass, +internal,
+                              kinetic_energy_fix, c, integral, range, alpha, mass, internal,
                               crossed);
           },
           boundary);
@@ -774,11 +784,12 @@ inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state,
   Kokkos::parallel_for(
       "lagremap::remap::fluxes_and_update", policy, KOKKOS_LAMBDA(const Index c) {
         using detail::RowOf;
+        RowOf integral_row{integral, c}, alpha{s.alpha_ck, c}, mass{s.m_ck, c}, internal{s.e_ck, c};
+        detail::SourceRangeOf<detail::SourceBoundsRow> range{{source_range, c}};
         RemapBoundaryFlux unused;
         detail::remapCell(s, neighbors, false, layout, fields, swept, limit, alpha_floor,
-                          kinetic_energy_fix, c, RowOf{integral, c},
-                          detail::SourceRangeOf<RowOf>{RowOf{source_range, c}},
-                          RowOf{s.alpha_ck, c}, RowOf{s.m_ck, c}, RowOf{s.e_ck, c}, unused);
+                          kinetic_energy_fix, c, integral_row, range, alpha, mass, internal,
+                          unused);
       });
   return boundary;
 }
