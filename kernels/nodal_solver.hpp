@@ -120,13 +120,14 @@ KOKKOS_FORCEINLINE_FUNCTION StencilFace stencilFace(const Neighbors& neighbors,
 // Mirror image across a wall face: offset to the ghost centroid, the jump of
 // the velocity (normal component reversed) and the face's unit normal (for the
 // stress's mirror jump); the pressure is continuous.
-template <class Real>
-KOKKOS_INLINE_FUNCTION void mirrorAcrossFace(const Vec3Of<Real> x[8], int f,
+// (node(n): the position of the cell's node n)
+template <class Real, class NodeAt>
+KOKKOS_INLINE_FUNCTION void mirrorAcrossFace(const NodeAt& node, int f,
                                              const Vec3Of<Real>& centroid,
                                              const Vec3Of<Real>& velocity, Vec3Of<Real>& offset,
                                              Vec3Of<Real>& velocity_jump, Vec3Of<Real>& normal) {
   Vec3Of<Real> q[4];
-  for (int k = 0; k < 4; ++k) q[k] = x[hex::faceNode(f, k)];
+  for (int k = 0; k < 4; ++k) q[k] = node(hex::faceNode(f, k));
   const Vec3Of<Real> area = 0.5 * cross(q[2] - q[0], q[3] - q[1]);  // hex::faceArea
   normal = (1.0 / hex::detail::laneSqrt(dot(area, area))) * area;
   const Vec3Of<Real> face_point = 0.25 * (q[0] + q[1] + q[2] + q[3]);
@@ -186,7 +187,7 @@ KOKKOS_FORCEINLINE_FUNCTION void gatherStencil(
         dx = Vec3Of<Real>{Real{}, Real{}, side * (x[4].z - x[0].z)};
         dv = Vec3Of<Real>{Real{}, Real{}, -2.0 * v_cell.z};
       } else {
-        mirrorAcrossFace(x, f, centroid, v_cell, dx, dv, normal);
+        mirrorAcrossFace([&](int n) { return x[n]; }, f, centroid, v_cell, dx, dv, normal);
       }
       if (solid) dsigma = mirrorJump(sigma_cell, normal);
     } else {
@@ -481,6 +482,330 @@ struct CornerTerms {
   }
 };
 
+// The staged form of the corner terms (KernelForm::Staged, docs/method.md
+// §7.6): the fused form's arithmetic in three kernels that each hold a part
+// of it. The velocity limiter, then the stress (or pressure) limiter, each
+// from its own pass over the stencil, store a cell's gradients and limiter
+// factors in a row of CornerRows; the corner kernel then forms each node's
+// values and B_cp one corner at a time. The limiters visit one vertex at a
+// time (projectedLimiterByVertex) in the fused form's vertex order, so every
+// minimum and maximum is over the same numbers: the same bits.
+namespace corner_rows {
+// (enumerators, not constexpr variables: device code takes them by reference)
+enum : int {
+  kGradV = 0,    // 3 x 3: the gradients of V_x, V_y, V_z
+  kPhiV = 9,     // the velocity's limiter factor
+  kPhiS = 10,    // the stress's (a solid) or the pressure's (a fluid)
+  kGradS = 11,   // 6 x 3 (a solid: xx, yy, zz, xy, yz, xz) or 3 (a fluid: grad p)
+  kPulled = 29,  // 6 x 3: a solid's pulled-back jumps (pullBack), the limiter's
+  kColumns = 47,
+};
+}  // namespace corner_rows
+
+KOKKOS_FORCEINLINE_FUNCTION Vec3 loadRowVec3(const MatRealView& rows, Index c, int column) {
+  return {rows(c, column), rows(c, column + 1), rows(c, column + 2)};
+}
+KOKKOS_FORCEINLINE_FUNCTION void storeRowVec3(const MatRealView& rows, Index c, int column,
+                                              const Vec3& v) {
+  rows(c, column) = v.x;
+  rows(c, column + 1) = v.y;
+  rows(c, column + 2) = v.z;
+}
+
+// projectedLimiter (reconstruction.hpp) one vertex at a time:
+// `vertex(p, direction, length2)` gives vertex p's direction and |delta_p|^2.
+template <bool plateau_guard, bool vertex_sums, class VertexOf>
+KOKKOS_INLINE_FUNCTION double projectedLimiterByVertex(const Vec3 jumps[6], int n_vertices,
+                                                       const VertexOf& vertex) {
+  double limiter = 1.0;
+  LAGREMAP_NO_UNROLL
+  for (int p = 0; p < n_vertices; ++p) {
+    Vec3 direction;
+    double length2;
+    vertex(p, direction, length2);
+    double toward = 0.0, away = 0.0, along[6];
+    for (int f = 0; f < 6; ++f) {
+      along[f] = jumps[f].x * direction.x + jumps[f].y * direction.y + jumps[f].z * direction.z;
+      toward = along[f] > toward ? along[f] : toward;
+      if (plateau_guard) away = -along[f] > away ? -along[f] : away;
+    }
+    if (vertex_sums) {
+      const bool on_x_plus = p == 1 || p == 2 || p == 5 || p == 6;
+      const double fx = on_x_plus ? along[1] : along[0];
+      const double fy = (p & 2) ? along[3] : along[2];
+      const double fz = (p & 4) ? along[5] : along[4];
+      const double sums[4] = {fx + fy, fy + fz, fx + fz, fx + fy + fz};
+      for (const double sum : sums) {
+        toward = sum > toward ? sum : toward;
+        if (plateau_guard) away = -sum > away ? -sum : away;
+      }
+    }
+    double reach = toward, length2_scaled = length2;
+    if (plateau_guard && toward < away) {
+      reach = 0.5 * toward * (away * away + toward * toward);
+      length2_scaled = length2 * (away * away);
+    }
+    if (reach < limiter * length2_scaled) limiter = reach / length2_scaled;
+  }
+  return limiter;
+}
+
+struct StagedCorners {
+  CellNodesView cell_nodes;
+  CellFacesView neighbors;
+  CellFacesView face_side;
+  DeviceView<int[kNumSides]> side_kind;
+  Vec3View x_n;
+  State s;
+  bool z_prisms, second_order, atomics;
+  MatRealView rows;  // (cell, corner_rows::kColumns)
+
+  // What stands across face f: the offset dx to it, the velocity jump dv and
+  // (a mirror) the wall's normal; false for a free side (no jump).
+  KOKKOS_INLINE_FUNCTION bool across(Index c, int f, const NodesOfCell& nodes, const Vec3& centroid,
+                                     const Vec3& v_cell, StencilFace& face, Vec3& dx, Vec3& dv,
+                                     Vec3& normal) const {
+    face = stencilFace(neighbors, face_side, side_kind, c, f);
+    if (face == StencilFace::Neighbour) {
+      const Index nb = neighbors(c, f);
+      dx = loadVec3(s.x_c, nb) - centroid;
+      dv = loadVec3(s.v_c, nb) - v_cell;
+      return true;
+    }
+    if (face == StencilFace::None) return false;
+    if (z_prisms && f >= 4) {
+      const double side = f == 4 ? -1.0 : 1.0;
+      normal = Vec3{0.0, 0.0, side};
+      dx = Vec3{0.0, 0.0, side * (nodes(4).z - nodes(0).z)};
+      dv = Vec3{0.0, 0.0, -2.0 * v_cell.z};
+    } else {
+      mirrorAcrossFace(nodes, f, centroid, v_cell, dx, dv, normal);
+    }
+    return true;
+  }
+
+  // The stress jump across face f (zero for a free side) and the offset to it.
+  KOKKOS_INLINE_FUNCTION SymMat3 stressJump(Index c, int f, const NodesOfCell& nodes,
+                                            const Vec3& centroid, const Vec3& v_cell,
+                                            const SymMat3& sigma_cell, Vec3& dx) const {
+    StencilFace face;
+    Vec3 dv, normal;
+    if (!across(c, f, nodes, centroid, v_cell, face, dx, dv, normal)) return identitySym(0.0);
+    if (face == StencilFace::Mirror) return mirrorJump(sigma_cell, normal);
+    const Index nb = neighbors(c, f);
+    return loadSym(s.S_c, nb) + identitySym(-s.p_c(nb)) - sigma_cell;
+  }
+
+  KOKKOS_INLINE_FUNCTION int vertices() const { return z_prisms ? 4 : kHexVertices; }
+
+  // The velocity's gradient and limiter factor (limitedNodeVelocities).
+  KOKKOS_INLINE_FUNCTION void velocityLimiter(Index c) const {
+    const NodesOfCell nodes{cell_nodes, x_n, c};
+    const Vec3 v_cell = loadVec3(s.v_c, c), centroid = loadVec3(s.x_c, c);
+    const bool solid = s.aT_c(c) > 0.0;
+    LeastSquares lsq;
+    Vec3 rhs_v[3] = {Vec3{0.0, 0.0, 0.0}, Vec3{0.0, 0.0, 0.0}, Vec3{0.0, 0.0, 0.0}};
+    for (int f = 0; f < 6; ++f) {
+      StencilFace face;
+      Vec3 dx, dv, normal;
+      if (!across(c, f, nodes, centroid, v_cell, face, dx, dv, normal)) continue;
+      lsq.addOffset(dx);
+      rhs_v[0] += dv.x * dx;
+      rhs_v[1] += dv.y * dx;
+      rhs_v[2] += dv.z * dx;
+    }
+    const SymMat3 inv = lsq.solver();
+    const Vec3 grad_v[3] = {inv * rhs_v[0], inv * rhs_v[1], inv * rhs_v[2]};
+    // the jumps again, from a second pass (not held through the first)
+    Vec3 dv_nb[6];
+    for (int f = 0; f < 6; ++f) {
+      StencilFace face;
+      Vec3 dx, normal;
+      if (!across(c, f, nodes, centroid, v_cell, face, dx, dv_nb[f], normal)) {
+        dv_nb[f] = Vec3{0.0, 0.0, 0.0};
+      }
+    }
+    double longest2 = 0.0;
+    const auto vertex = [&](int p, Vec3& direction, double& length2) {
+      const Vec3 offset = nodes(p) - centroid;
+      direction = Vec3{grad_v[0].x * offset.x + grad_v[0].y * offset.y + grad_v[0].z * offset.z,
+                       grad_v[1].x * offset.x + grad_v[1].y * offset.y + grad_v[1].z * offset.z,
+                       grad_v[2].x * offset.x + grad_v[2].y * offset.y + grad_v[2].z * offset.z};
+      length2 = direction.x * direction.x + direction.y * direction.y + direction.z * direction.z;
+      longest2 = length2 > longest2 ? length2 : longest2;
+    };
+    const double phi_v = solid ? projectedLimiterByVertex<true, true>(dv_nb, vertices(), vertex)
+                               : projectedLimiterByVertex<false, true>(dv_nb, vertices(), vertex);
+    const double sound_speed = s.aL_c(c);
+    const double phi = phi_v * phi_v * longest2 > sound_speed * sound_speed
+                           ? sound_speed / math::sqrt(longest2)
+                           : phi_v;
+    for (int i = 0; i < 3; ++i) storeRowVec3(rows, c, corner_rows::kGradV + 3 * i, grad_v[i]);
+    rows(c, corner_rows::kPhiV) = phi;
+  }
+
+  // A solid's stress gradient and limiter factor (limitedNodeStresses), a
+  // fluid's pressure's (limitedNodePressures).
+  KOKKOS_INLINE_FUNCTION void stressGradient(Index c) const {
+    const NodesOfCell nodes{cell_nodes, x_n, c};
+    const Vec3 v_cell = loadVec3(s.v_c, c), centroid = loadVec3(s.x_c, c);
+    const double p_cell = s.p_c(c);
+    const bool solid = s.aT_c(c) > 0.0;
+    const double sound_speed = s.aL_c(c);
+    const double stress_scale = s.rho_c(c) * sound_speed * sound_speed;
+    LeastSquares lsq;
+    if (!solid) {
+      Vec3 rhs_p{0.0, 0.0, 0.0};
+      Bounds pb(p_cell);
+      for (int f = 0; f < 6; ++f) {
+        StencilFace face;
+        Vec3 dx, dv, normal;
+        if (!across(c, f, nodes, centroid, v_cell, face, dx, dv, normal)) continue;
+        const double dp = face == StencilFace::Neighbour ? s.p_c(neighbors(c, f)) - p_cell : 0.0;
+        lsq.addOffset(dx);
+        rhs_p += dp * dx;
+        pb.include(p_cell + dp);
+      }
+      const Vec3 grad_p = lsq.solver() * rhs_p;
+      VertexExcursion excursion;
+      double largest = 0.0;
+      for (int p = 0; p < vertices(); ++p) {
+        const Vec3 offset = nodes(p) - centroid;
+        const double dp = grad_p.x * offset.x + grad_p.y * offset.y + grad_p.z * offset.z;
+        excursion.include(dp);
+        const double size = math::fabs(dp);
+        largest = size > largest ? size : largest;
+      }
+      double phi_p = cellLimiter(excursion, p_cell, pb, 1.0);
+      phi_p = phi_p * largest > stress_scale ? stress_scale / largest : phi_p;
+      storeRowVec3(rows, c, corner_rows::kGradS, grad_p);
+      rows(c, corner_rows::kPhiS) = phi_p;
+      return;
+    }
+    const SymMat3 sigma_cell = loadSym(s.S_c, c) + identitySym(-p_cell);
+    const auto jump = [&](int f, Vec3& dx) {
+      return stressJump(c, f, nodes, centroid, v_cell, sigma_cell, dx);
+    };
+    Vec3 rhs[6];
+    for (int i = 0; i < 6; ++i) rhs[i] = Vec3{0.0, 0.0, 0.0};
+    for (int f = 0; f < 6; ++f) {
+      Vec3 dx;
+      const SymMat3 dsigma = jump(f, dx);
+      if (stencilFace(neighbors, face_side, side_kind, c, f) == StencilFace::None) continue;
+      lsq.addOffset(dx);
+      rhs[0] += dsigma.xx * dx;
+      rhs[1] += dsigma.yy * dx;
+      rhs[2] += dsigma.zz * dx;
+      rhs[3] += dsigma.xy * dx;
+      rhs[4] += dsigma.yz * dx;
+      rhs[5] += dsigma.xz * dx;
+    }
+    const SymMat3 inv = lsq.solver();
+    Vec3 grad[6];
+    for (int i = 0; i < 6; ++i) grad[i] = inv * rhs[i];
+    for (int i = 0; i < 6; ++i) storeRowVec3(rows, c, corner_rows::kGradS + 3 * i, grad[i]);
+  }
+
+  // ... and a solid's limiter factor, from the stored gradients: the
+  // excursions' squares, the pulled-back jumps from a second pass over the
+  // stencil (into the row), then the vertex by vertex limiter.
+  KOKKOS_INLINE_FUNCTION void stressLimiter(Index c) const {
+    if (!(s.aT_c(c) > 0.0)) return;  // (a fluid's is done)
+    const NodesOfCell nodes{cell_nodes, x_n, c};
+    const Vec3 v_cell = loadVec3(s.v_c, c), centroid = loadVec3(s.x_c, c);
+    const double p_cell = s.p_c(c);
+    const double sound_speed = s.aL_c(c);
+    const double stress_scale = s.rho_c(c) * sound_speed * sound_speed;
+    const SymMat3 sigma_cell = loadSym(s.S_c, c) + identitySym(-p_cell);
+    const auto jump = [&](int f, Vec3& dx) {
+      return stressJump(c, f, nodes, centroid, v_cell, sigma_cell, dx);
+    };
+    // |delta_p|^2, the Frobenius square of the excursion G d_p, at each vertex
+    // first (the gradients), then the pulled-back jumps (pullBack) from a
+    // second pass over the stencil: the two are never held at once
+    double length2[kHexVertices], largest2 = 0.0;
+    LAGREMAP_NO_UNROLL
+    for (int p = 0; p < vertices(); ++p) {
+      const Vec3 d = nodes(p) - centroid;
+      double e[6];
+      for (int i = 0; i < 6; ++i) {
+        const Vec3 g = loadRowVec3(rows, c, corner_rows::kGradS + 3 * i);
+        e[i] = g.x * d.x + g.y * d.y + g.z * d.z;
+      }
+      length2[p] =
+          e[0] * e[0] + e[1] * e[1] + e[2] * e[2] + 2.0 * (e[3] * e[3] + e[4] * e[4] + e[5] * e[5]);
+      largest2 = length2[p] > largest2 ? length2[p] : largest2;
+    }
+    // the gradients from the row, a face at a time
+    const auto gradient = [&](int i) { return loadRowVec3(rows, c, corner_rows::kGradS + 3 * i); };
+    for (int f = 0; f < 6; ++f) {
+      Vec3 dx;
+      const SymMat3 t = jump(f, dx);
+      storeRowVec3(rows, c, corner_rows::kPulled + 3 * f,
+                   t.xx * gradient(0) + t.yy * gradient(1) + t.zz * gradient(2) +
+                       (2.0 * t.xy) * gradient(3) + (2.0 * t.yz) * gradient(4) +
+                       (2.0 * t.xz) * gradient(5));
+    }
+    Vec3 pulled[6];
+    for (int f = 0; f < 6; ++f) pulled[f] = loadRowVec3(rows, c, corner_rows::kPulled + 3 * f);
+    const auto vertex = [&](int p, Vec3& direction, double& vertex_length2) {
+      direction = nodes(p) - centroid;
+      vertex_length2 = length2[p];
+    };
+    double phi = projectedLimiterByVertex<true, false>(pulled, vertices(), vertex);
+    phi = phi * phi * largest2 > stress_scale * stress_scale ? stress_scale / math::sqrt(largest2)
+                                                             : phi;
+    rows(c, corner_rows::kPhiS) = phi;
+  }
+
+  // B_cp of each corner from the node values (repeatBottomVertices: a z
+  // prism's top vertices take the bottom ones' values).
+  KOKKOS_INLINE_FUNCTION void rightHandSides(Index c) const {
+    const NodesOfCell nodes{cell_nodes, x_n, c};
+    const Vec3 v_cell = loadVec3(s.v_c, c), centroid = loadVec3(s.x_c, c);
+    const double p_cell = s.p_c(c);
+    const bool solid = s.aT_c(c) > 0.0;
+    const SymMat3 sigma_cell =
+        solid ? loadSym(s.S_c, c) + identitySym(-p_cell) : identitySym(-p_cell);
+    LAGREMAP_NO_UNROLL
+    for (int p = 0; p < 8; ++p) {
+      Vec3 v_node = v_cell;
+      SymMat3 sigma_node = sigma_cell;
+      double p_node = p_cell;
+      if (second_order) {
+        const Vec3 offset = nodes(z_prisms ? p & 3 : p) - centroid;
+        const auto along = [&](int column) {
+          const Vec3 g = loadRowVec3(rows, c, column);
+          return g.x * offset.x + g.y * offset.y + g.z * offset.z;
+        };
+        const double phi_v = rows(c, corner_rows::kPhiV), phi_s = rows(c, corner_rows::kPhiS);
+        v_node = Vec3{v_cell.x + phi_v * along(corner_rows::kGradV),
+                      v_cell.y + phi_v * along(corner_rows::kGradV + 3),
+                      v_cell.z + phi_v * along(corner_rows::kGradV + 6)};
+        if (solid) {
+          sigma_node = {sigma_cell.xx + phi_s * along(corner_rows::kGradS),
+                        sigma_cell.yy + phi_s * along(corner_rows::kGradS + 3),
+                        sigma_cell.zz + phi_s * along(corner_rows::kGradS + 6),
+                        sigma_cell.xy + phi_s * along(corner_rows::kGradS + 9),
+                        sigma_cell.yz + phi_s * along(corner_rows::kGradS + 12),
+                        sigma_cell.xz + phi_s * along(corner_rows::kGradS + 15)};
+        } else {
+          p_node = p_cell + phi_s * along(corner_rows::kGradS);
+        }
+      }
+      const Index corner = 8 * c + p;
+      const Vec3 area = loadVec3(s.A_cp, corner);
+      const Vec3 stress_force = solid ? -(sigma_node * area) : p_node * area;
+      storeVec3(s.B_cp, corner, loadSym(s.M_cp, corner) * v_node + stress_force);
+      if (atomics) {
+        const Index node = cell_nodes(c, p);
+        for (int j = 0; j < 6; ++j) Kokkos::atomic_add(&s.M_n(node, j), s.M_cp(corner, j));
+        for (int j = 0; j < 3; ++j) Kokkos::atomic_add(&s.B_n(node, j), s.B_cp(corner, j));
+      }
+    }
+  }
+};
+
 // The corner terms of a mesh's cells under `controls`.
 inline CornerTerms cornerTerms(const Mesh& mesh, const State& state,
                                const CornerControls& controls) {
@@ -497,20 +822,10 @@ inline CornerTerms cornerTerms(const Mesh& mesh, const State& state,
 
 }  // namespace detail
 
-// Per cell: V and sigma reconstructed at its nodes (docs/method.md §A5: piecewise
-// constant at first order; second order: least-squares gradients limited by
-// one frame-independent factor each, a solid's whole Cauchy stress as a
-// tensor, a fluid's pressure as a scalar), then B_cp = M_cp V_c(p) -
-// sigma_c(p) A_cp. On CPU builds the cells go kCellLanes at a time in the
-// lanes of a vector where their stencils have one shape (the same bits as
-// cell by cell, docs/method.md §7.1).
-inline void computeCornerTerms(const Mesh& mesh, const State& state,
-                               const CornerControls& controls) {
-  const detail::CornerTerms terms = detail::cornerTerms(mesh, state, controls);
-  if (terms.atomics) {
-    Kokkos::deep_copy(state.M_n, 0.0);
-    Kokkos::deep_copy(state.B_n, 0.0);
-  }
+// The fused form: one kernel, cells in the lanes of a vector where they can.
+// (a template: instantiated where it is called, never in a device build)
+template <class Terms>
+void computeFusedCornerTerms(const Mesh& mesh, const Terms& terms) {
   const Index n_cells = mesh.n_cells;
   Kokkos::parallel_for(
       "lagremap::corners::reconstruct_and_impedance",
@@ -520,12 +835,64 @@ inline void computeCornerTerms(const Mesh& mesh, const State& state,
 #if LAGREMAP_CELL_PACKS
         if (count == hex::kCellLanes && terms.second_order &&
             terms.lanesShareStencilShape(first, count)) {
-          terms.ofCells<hex::CellPack>(first);
+          terms.template ofCells<hex::CellPack>(first);
           return;
         }
 #endif
-        for (int i = 0; i < count; ++i) terms.ofCells<double>(first + i);
+        for (int i = 0; i < count; ++i) terms.template ofCells<double>(first + i);
       });
+}
+
+// The staged form's rows of computeCornerTerms.
+inline MatRealView allocateCornerRows(const Mesh& mesh) {
+  return MatRealView("lagremap::corners::rows", mesh.n_cells, detail::corner_rows::kColumns);
+}
+
+// Per cell: V and sigma reconstructed at its nodes (docs/method.md §A5: piecewise
+// constant at first order; second order: least-squares gradients limited by
+// one frame-independent factor each, a solid's whole Cauchy stress as a
+// tensor, a fluid's pressure as a scalar), then B_cp = M_cp V_c(p) -
+// sigma_c(p) A_cp. On CPU builds the cells go kCellLanes at a time in the
+// lanes of a vector where their stencils have one shape (the same bits as
+// cell by cell, docs/method.md §7.1).
+// `rows`: the staged form's per-cell rows (allocateCornerRows, KernelForm::
+// Staged); without them the fused form runs (built on CPU backends only).
+inline void computeCornerTerms(const Mesh& mesh, const State& state, const CornerControls& controls,
+                               const MatRealView& rows = {}) {
+  const detail::CornerTerms terms = detail::cornerTerms(mesh, state, controls);
+  if (terms.atomics) {
+    Kokkos::deep_copy(state.M_n, 0.0);
+    Kokkos::deep_copy(state.B_n, 0.0);
+  }
+  const auto policy = Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells);
+  if (!kFusedKernelsBuilt || rows.extent(0) > 0) {
+    // (a caller outside the time loop may leave the rows to this call)
+    const MatRealView own_rows = rows.extent(0) > 0 ? rows : allocateCornerRows(mesh);
+    const detail::StagedCorners staged{
+        terms.cell_nodes, terms.neighbors, terms.face_side,    terms.side_kind, terms.x_n,
+        terms.s,          terms.z_prisms,  terms.second_order, terms.atomics,   own_rows};
+    if (staged.second_order) {
+      Kokkos::parallel_for(
+          "lagremap::corners::velocity_limiter", policy,
+          KOKKOS_LAMBDA(const Index c) { staged.velocityLimiter(c); });
+      // (at most 128 registers a thread, 4 blocks of 128 threads an SM: it
+      // needs 130 unbounded, and no spill bounded)
+      Kokkos::parallel_for(
+          "lagremap::corners::stress_gradient",
+          Kokkos::RangePolicy<ExecSpace, Kokkos::LaunchBounds<128, 4>>(0, mesh.n_cells),
+          KOKKOS_LAMBDA(const Index c) { staged.stressGradient(c); });
+      if (terms.s.has_solids) {
+        Kokkos::parallel_for(
+            "lagremap::corners::stress_limiter", policy,
+            KOKKOS_LAMBDA(const Index c) { staged.stressLimiter(c); });
+      }
+    }
+    Kokkos::parallel_for(
+        "lagremap::corners::right_hand_sides", policy,
+        KOKKOS_LAMBDA(const Index c) { staged.rightHandSides(c); });
+    return;
+  }
+  if constexpr (kFusedKernelsBuilt) computeFusedCornerTerms(mesh, terms);
 }
 
 namespace detail {

@@ -289,7 +289,10 @@ KOKKOS_FORCEINLINE_FUNCTION void cellGradients(const CellNodesView& cell_nodes,
   LeastSquares lsq;
   for (int f = 0; f < 6; ++f) {
     stencil.nb[f] = neighbors(c, f);
-    if (stencil.nb[f] < 0) continue;
+    if (stencil.nb[f] < 0) {
+      if constexpr (kHold) held_offset[f] = Vec3{0.0, 0.0, 0.0};  // (never read)
+      continue;
+    }
     const Vec3 d = loadVec3(x_c, stencil.nb[f]) - centroid;
     if constexpr (kHold) held_offset[f] = d;
     lsq.addOffset(d);

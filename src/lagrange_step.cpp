@@ -32,6 +32,7 @@ std::string describeInvalidCell(const StepLimit& limit, long step, const char* w
 LagrangeStep::LagrangeStep(Mesh& mesh, State& state, const Numerics& numerics, PhaseTimers& timers,
                            const Halo* halo)
     : mesh_(mesh), state_(state), numerics_(numerics), timers_(timers), halo_(halo) {
+  if (numerics_.kernels == KernelForm::Staged) corner_rows_ = allocateCornerRows(mesh_);
   if (halo_) {
     node_fields_ = {fieldRef("v_n", state_.v_n)};
     stage_end_fields_ = stageEndCellFields(state_);
@@ -70,7 +71,7 @@ StepLimit LagrangeStep::stage(double dt_stage, bool last_stage) {
   const CornerControls corner_controls{numerics_.order, numerics_.gather};
   {
     auto scope = timers_.scope(Phase::Corners);
-    computeCornerTerms(mesh_, state_, corner_controls);
+    computeCornerTerms(mesh_, state_, corner_controls, corner_rows_);
   }
   {
     auto scope = timers_.scope(Phase::NodalSolve);

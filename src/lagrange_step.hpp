@@ -82,6 +82,8 @@ class LagrangeStep {
   PhaseTimers& timers_;
   const Halo* halo_;
   bool remap_follows_ = false;
+  // The staged form's per-cell rows of the corner terms (empty: fused).
+  MatRealView corner_rows_;
   // The halo's lists (src/fields.hpp), made once: the Views they name are
   // the state's for the whole run.
   std::vector<FieldRef> node_fields_, stage_end_fields_, stage_end_fields_for_remap_;
