@@ -54,8 +54,8 @@ KOKKOS_INLINE_FUNCTION Vec3Of<Real> operator-(const Vec3Of<Real>& a) {
   return {-a.x, -a.y, -a.z};
 }
 template <class Real>
-KOKKOS_INLINE_FUNCTION Vec3Of<Real> operator*(const typename ScalarOf<Real>::type& s,
-                                              const Vec3Of<Real>& a) {
+KOKKOS_FORCEINLINE_FUNCTION Vec3Of<Real> operator*(const typename ScalarOf<Real>::type& s,
+                                                   const Vec3Of<Real>& a) {
   return {s * a.x, s * a.y, s * a.z};
 }
 template <class Real, NotDouble<Real> = 0>
@@ -308,11 +308,11 @@ KOKKOS_INLINE_FUNCTION void storeVec3(const View& v, int i, const Vec3& a) {
   v(i, 2) = a.z;
 }
 template <class View>
-KOKKOS_INLINE_FUNCTION SymMat3 loadSym(const View& v, int i) {
+KOKKOS_FORCEINLINE_FUNCTION SymMat3 loadSym(const View& v, int i) {
   return {v(i, 0), v(i, 1), v(i, 2), v(i, 3), v(i, 4), v(i, 5)};
 }
 template <class View>
-KOKKOS_INLINE_FUNCTION void storeSym(const View& v, int i, const SymMat3& a) {
+KOKKOS_FORCEINLINE_FUNCTION void storeSym(const View& v, int i, const SymMat3& a) {
   v(i, 0) = a.xx;
   v(i, 1) = a.yy;
   v(i, 2) = a.zz;
@@ -323,11 +323,11 @@ KOKKOS_INLINE_FUNCTION void storeSym(const View& v, int i, const SymMat3& a) {
 
 // Per-material tensors: entity i, material k.
 template <class View>
-KOKKOS_INLINE_FUNCTION SymMat3 loadSym(const View& v, int i, int k) {
+KOKKOS_FORCEINLINE_FUNCTION SymMat3 loadSym(const View& v, int i, int k) {
   return {v(i, k, 0), v(i, k, 1), v(i, k, 2), v(i, k, 3), v(i, k, 4), v(i, k, 5)};
 }
 template <class View>
-KOKKOS_INLINE_FUNCTION void storeSym(const View& v, int i, int k, const SymMat3& a) {
+KOKKOS_FORCEINLINE_FUNCTION void storeSym(const View& v, int i, int k, const SymMat3& a) {
   v(i, k, 0) = a.xx;
   v(i, k, 1) = a.yy;
   v(i, k, 2) = a.zz;

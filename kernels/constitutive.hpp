@@ -22,7 +22,7 @@ KOKKOS_INLINE_FUNCTION double rowDot(const Mat3& A, int i, const Mat3& F, int j)
 // Cauchy-Green tensor, B_{n+1} = F B_n F^T, the exact integral of docs/method.md §A7's
 // dB/dt = L B + B L^T for that F; it keeps B positive definite whenever F is
 // invertible, which a forward-Euler step of the ODE does not guarantee.
-KOKKOS_INLINE_FUNCTION SymMat3 pushForward(const Mat3& F, const SymMat3& B) {
+KOKKOS_FORCEINLINE_FUNCTION SymMat3 pushForward(const Mat3& F, const SymMat3& B) {
   const Mat3 FB = F * fullMat(B);
   return {detail::rowDot(FB, 0, F, 0), detail::rowDot(FB, 1, F, 1), detail::rowDot(FB, 2, F, 2),
           detail::rowDot(FB, 0, F, 1), detail::rowDot(FB, 1, F, 2), detail::rowDot(FB, 0, F, 2)};

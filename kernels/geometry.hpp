@@ -131,8 +131,8 @@ KOKKOS_INLINE_FUNCTION double relaxationVolume(const State& s, Index c, int k) {
   return relax[k];
 }
 
-KOKKOS_INLINE_FUNCTION void shareVolumeChange(const State& s, Index c, double volume,
-                                              const StageRelaxation* known = nullptr) {
+KOKKOS_FORCEINLINE_FUNCTION void shareVolumeChange(const State& s, Index c, double volume,
+                                                   const StageRelaxation* known = nullptr) {
   if (s.closure == MixtureClosure::EqualStrain) return;  // alpha^k unchanged
   double weight_sum = 0.0;
   int present = 0;

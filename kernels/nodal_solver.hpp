@@ -1399,8 +1399,8 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
 //   m_c dV_c/dt = sum_p F_cp,  m_c dE_c/dt = sum_p F_cp . V_p,
 // and dv_c/dt = sum_p A_cp . V_p for the next time step.
 // Returns the cell's new specific internal energy.
-KOKKOS_INLINE_FUNCTION double updateCellMotion(const CellNodesView& cell_nodes, const State& s,
-                                               double dt_stage, Index c) {
+KOKKOS_FORCEINLINE_FUNCTION double updateCellMotion(const CellNodesView& cell_nodes, const State& s,
+                                                    double dt_stage, Index c) {
   Vec3 force{0, 0, 0};
   double power = 0.0, dvdt = 0.0;
   for (int p = 0; p < 8; ++p) {

@@ -3,9 +3,10 @@
 
 Reads the compiler output on stdin (or from the files named) and prints, for
 each lagremap kernel (the function whose lambda or functor Kokkos launches),
-its registers per thread, stack frame and spill stores / loads in bytes; the
-heaviest instance first where a kernel is compiled several times (template
-instances, several translation units). Kokkos' own kernels (view copies,
+its registers per thread, stack frame and spill stores / loads in bytes: the
+largest over its compiled instances (template instances, staged kernels of
+one function, several translation units), the spills of the one that spills
+most. Kokkos' own kernels (view copies,
 fills) are left out.
 
   perf/gpu_resources.sh [ARCH]   compiles the kernels' translation units and
@@ -133,8 +134,11 @@ def main():
     print(f"{'kernel':<34} {'inst':>4} {'registers':>9} {'stack [B]':>9} {'spill st/ld [B]':>16}"
           f"  ({kernels[0]['arch']})")
     for label, instances in rows:
-        k = instances[0]
-        print(f"{label:<34} {len(instances):>4} {k['registers']:>9} {k['stack']:>9} "
+        # the largest of each measure over the kernel's instances
+        registers = max(k["registers"] for k in instances)
+        stack = max(k["stack"] for k in instances)
+        k = instances[0]  # the one that spills most
+        print(f"{label:<34} {len(instances):>4} {registers:>9} {stack:>9} "
               f"{str(k['spill_st']) + ' / ' + str(k['spill_ld']):>16}")
     spilling = sum(1 for _, inst in rows if inst[0]["spill_st"] + inst[0]["spill_ld"] > 0)
     print(f"{len(rows)} lagremap kernels ({len(ours)} instances), {spilling} spill")
