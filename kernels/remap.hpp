@@ -279,6 +279,15 @@ KOKKOS_FORCEINLINE_FUNCTION void cellGradients(const CellNodesView& cell_nodes,
   const Vec3 centroid = loadVec3(x_c, c);
   GradientStencil stencil;
   Vec3 held_offset[kHold ? 6 : 1];
+  LeastSquares lsq;
+  for (int f = 0; f < 6; ++f) {
+    stencil.nb[f] = neighbors(c, f);
+    const Vec3 d = stencil.nb[f] < 0 ? Vec3{0.0, 0.0, 0.0}  // (no neighbour: never read)
+                                     : loadVec3(x_c, stencil.nb[f]) - centroid;
+    if constexpr (kHold) held_offset[f] = d;
+    if (stencil.nb[f] >= 0) lsq.addOffset(d);
+  }
+  stencil.solver = lsq.solver();
   const auto offset = [&](int f) {
     if constexpr (kHold) {
       return held_offset[f];
@@ -286,18 +295,6 @@ KOKKOS_FORCEINLINE_FUNCTION void cellGradients(const CellNodesView& cell_nodes,
       return loadVec3(x_c, stencil.nb[f]) - centroid;
     }
   };
-  LeastSquares lsq;
-  for (int f = 0; f < 6; ++f) {
-    stencil.nb[f] = neighbors(c, f);
-    if (stencil.nb[f] < 0) {
-      if constexpr (kHold) held_offset[f] = Vec3{0.0, 0.0, 0.0};  // (never read)
-      continue;
-    }
-    const Vec3 d = loadVec3(x_c, stencil.nb[f]) - centroid;
-    if constexpr (kHold) held_offset[f] = d;
-    lsq.addOffset(d);
-  }
-  stencil.solver = lsq.solver();
   const auto vertex = [&](int p) { return loadVec3(x_n, cell_nodes(c, p)) - centroid; };
   VertexVectors held_vertex;  // (kHold: in lanes)
   double reach2 = 0.0;

@@ -13,6 +13,13 @@
 namespace lagremap {
 namespace {
 
+// A cell's nodes held in an array, as the staged functions read them
+// (a functor: a host lambda cannot be called from their device code).
+struct NodesOfArray {
+  const Vec3* x;
+  KOKKOS_INLINE_FUNCTION Vec3 operator()(int n) const { return x[n]; }
+};
+
 // Unit cube in VTK order.
 void unitCube(Vec3 x[8]) {
   const Vec3 cube[8] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
@@ -197,7 +204,7 @@ TEST(Geometry, StagedFormGivesTheSweepsBitsCornerByCorner) {
     }
     hex::CellGeometry fused;
     hex::cellGeometry(x, fused);
-    const auto node = [&](int n) { return x[n]; };
+    const NodesOfArray node{x};
     const hex::CellShape shape = hex::sweptShape(node);
     EXPECT_EQ(shape.volume, fused.shape.volume) << "trial " << trial;
     EXPECT_EQ(shape.centroid.x, fused.shape.centroid.x);
