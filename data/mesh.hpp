@@ -58,8 +58,11 @@ struct Mesh {
   bool z_prisms = false;
 
   // Boundary data of the nodal solver.
-  DeviceView<int*> node_constrained;  // 1 if the node has a velocity constraint
-  Sym6View node_projector;            // projector on the allowed velocity subspace
+  // Projector of each node's velocity on its allowed subspace: -1 for a free
+  // node, else its row of `projectors` (the distinct ones: a wall's nodes
+  // share one).
+  DeviceView<int*> node_projector_id;
+  Sym6View projectors;
   // node -> boundary faces with an imposed traction (face id = 6 * cell + face).
   IndexView node_traction_offsets, node_traction_faces;
   DeviceView<Real[kNumSides][6]> side_traction;  // sigma^b of each side (Sym6 order)

@@ -48,7 +48,7 @@ struct State {
   MatRealView e_ck;      // specific internal energy
   MatRealView p_ck;      // pressure (derived at every stage)
   MatSym6View S_ck;      // deviator: evolved (hypo-elastic) or from B (Neo-Hookean)
-  MatSym6View B_ck;      // left Cauchy-Green tensor (Neo-Hookean; I elsewhere)
+  MatSym6View B_ck;      // left Cauchy-Green tensor (only in runs with a Neo-Hookean material)
   // Compressibility weight alpha^k / (rho^k a_k^2) (derived): a mixed cell's
   // volume change is shared among its materials in proportion to it.
   MatRealView w_ck;

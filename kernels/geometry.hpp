@@ -416,39 +416,6 @@ KOKKOS_INLINE_FUNCTION int chunkCells(Index n_cells, Index first) {
   return n_cells - first < hex::kCellLanes ? int(n_cells - first) : hex::kCellLanes;
 }
 
-// The geometry of every cell of a mesh that does not move: the remap's target,
-// the initial mesh, which every remap step ends on (docs/method.md §A9). Its volumes,
-// centroids, corner vectors and corner-face sums are computed once, not after
-// every remap: 680 bytes a cell for a third of the step's geometry work.
-using CellGeometryView = DeviceView<hex::CellGeometry*>;
-
-inline CellGeometryView fixedMeshGeometry(const Mesh& mesh) {
-  const auto cell_nodes = mesh.cell_nodes;
-  const auto x_n = mesh.x_n;
-  const bool z_prisms = mesh.z_prisms;
-  CellGeometryView geometry(
-      Kokkos::view_alloc(Kokkos::WithoutInitializing, "lagremap::remap::target_geometry"),
-      mesh.n_cells);
-  // once per run: the staged form (a corner at a time, the same bits as the
-  // fused sweep) on every backend
-  Kokkos::parallel_for(
-      "lagremap::remap::target_geometry", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
-      KOKKOS_LAMBDA(const Index c) {
-        const NodesOfCell nodes{cell_nodes, x_n, c};
-        hex::PrismBase base{};  // (read on prisms only)
-        hex::CellGeometry& g = geometry(c);
-        g.shape = stagedShape(nodes, z_prisms, base);
-        LAGREMAP_NO_UNROLL
-        for (int p = 0; p < 8; ++p) {
-          const hex::CornerSums corner = stagedCorner(nodes, z_prisms, base, p);
-          g.corner[p] = corner.vector;
-          g.normal_moment[p] = corner.normal_moment;
-          g.corner_face_area[p] = corner.area;
-        }
-      });
-  return geometry;
-}
-
 // The smallest time-step candidate over a mesh's cells: `cell(c, best)`
 // updates cell c and folds its candidates into `best`. A ghost cell's go to a
 // scratch value: they are its owner's to propose.
@@ -550,19 +517,6 @@ inline StepLimit computeGeometry(const Mesh& mesh, const State& state,
   return stepLimitOverCellNodes(
       "lagremap::geometry::cells", mesh, KOKKOS_LAMBDA(const NodesOfCell& nodes, StepLimit& best) {
         cellThermoOnNodes(nodes, z_prisms, s, controls, best, false);
-      });
-}
-
-// The same on a mesh whose geometry is known (fixedMeshGeometry of the mesh
-// at its current node positions): the state's part only.
-inline StepLimit computeGeometry(const Mesh& mesh, const State& state,
-                                 const TimeStepControls& controls,
-                                 const CellGeometryView& geometry) {
-  const auto s = state;
-  return stepLimitOverCells(
-      "lagremap::geometry::cells_on_fixed_mesh", mesh,
-      KOKKOS_LAMBDA(const Index c, StepLimit& best) {
-        cellThermoOnGeometry(geometry(c), s, controls, c, best, false);
       });
 }
 

@@ -978,11 +978,11 @@ inline void nodalSolve(const Mesh& mesh, const State& state, const CornerControl
   // The Views it reads, not the whole Mesh (whose global ids live on the host).
   const auto cell_face_side = mesh.cell_face_side;
   const auto cell_nodes = mesh.cell_nodes;
-  const auto node_constrained = mesh.node_constrained;
+  const auto node_projector_id = mesh.node_projector_id;
   const auto node_corner_offsets = mesh.node_corner_offsets;
   const auto node_corners = mesh.node_corners;
   const auto node_solve_order = mesh.node_solve_order;
-  const auto node_projector = mesh.node_projector;
+  const auto projectors = mesh.projectors;
   const auto node_traction_faces = mesh.node_traction_faces;
   const auto node_traction_offsets = mesh.node_traction_offsets;
   const auto side_traction = mesh.side_traction;
@@ -1035,8 +1035,9 @@ inline void nodalSolve(const Mesh& mesh, const State& state, const CornerControl
         }
         Vec3 velocity;
         Vec3 reaction{0, 0, 0};  // force of the walls on the node
-        if (node_constrained(n)) {
-          const SymMat3 projector = loadSym(node_projector, n);
+        const int projector_id = node_projector_id(n);
+        if (projector_id >= 0) {
+          const SymMat3 projector = loadSym(projectors, projector_id);
           const SymMat3 solver = inverse(detail::constrainedMatrix(projector, impedance));
           velocity = detail::project(projector, solver * detail::project(projector, rhs + load));
           // One step of iterative refinement: the tangential balance then

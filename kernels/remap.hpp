@@ -34,6 +34,7 @@
 
 #include "../data/mesh.hpp"
 #include "../data/state.hpp"
+#include "../data/work_arena.hpp"
 #include "kernel_form.hpp"
 #include "reconstruction.hpp"
 #include "sum_array.hpp"
@@ -103,17 +104,34 @@ struct RemapFields {
   // form, whose thread holds them): each cell's integrals (cell, column) and
   // its materials' source ranges (cell, 4 m + rho_lo, rho_hi, e_lo, e_hi).
   MatRealView integral, source_range;
+  RealView memory;  // what holds them (allocateRemapFields; empty when carved from a RemapStep's)
 };
 
+// The remap's work arrays carved out of `arena`: every entry is written in
+// each apply() before it is read, so the memory may hold anything before.
+inline RemapFields carveRemapFields(Index n_cells, const RemapLayout& layout, KernelForm form,
+                                    WorkArena& arena) {
+  const Index rows = form == KernelForm::Staged ? n_cells : 0;
+  RemapFields fields;
+  fields.density = arena.carve<MatRealView>(n_cells, layout.n_variables);
+  fields.primitive = arena.carve<MatRealView>(n_cells, layout.n_variables);
+  fields.gradient = arena.carve<DeviceView<Real** [3]>>(n_cells, layout.n_variables);
+  fields.reach = arena.carve<RealView>(n_cells);
+  fields.integral = arena.carve<MatRealView>(rows, layout.n_variables);
+  fields.source_range = arena.carve<MatRealView>(rows, 4 * layout.n_materials);
+  return fields;
+}
+
+// The same in memory of their own (label lagremap::remap::fields).
 inline RemapFields allocateRemapFields(Index n_cells, const RemapLayout& layout,
                                        KernelForm form = defaultKernelForm()) {
-  const Index rows = form == KernelForm::Staged ? n_cells : 0;
-  return {MatRealView("lagremap::remap::density", n_cells, layout.n_variables),
-          MatRealView("lagremap::remap::primitive", n_cells, layout.n_variables),
-          DeviceView<Real** [3]>("lagremap::remap::gradient", n_cells, layout.n_variables),
-          RealView("lagremap::remap::reach", n_cells),
-          MatRealView("lagremap::remap::integral", rows, layout.n_variables),
-          MatRealView("lagremap::remap::source_range", rows, 4 * layout.n_materials)};
+  WorkArena size;
+  carveRemapFields(n_cells, layout, form, size);
+  const RealView memory("lagremap::remap::fields", size.used());
+  WorkArena arena(memory);
+  RemapFields fields = carveRemapFields(n_cells, layout, form, arena);
+  fields.memory = memory;
+  return fields;
 }
 
 // Quantities the outer boundary exchanged in the sweep (mass, momentum xyz,

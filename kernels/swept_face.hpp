@@ -14,6 +14,7 @@
 #pragma once
 
 #include "../data/mesh.hpp"
+#include "../data/work_arena.hpp"
 #include "hex.hpp"
 #include "kernel_form.hpp"
 
@@ -246,12 +247,28 @@ KOKKOS_INLINE_FUNCTION Index sweptRegionId(Index c, int f, int side) {
 struct SweptFaces {
   RealView dvol_r;    // signed swept volume dV (>= 0 gained, <= 0 given)
   Vec3View moment_r;  // first moment M, absolute coordinates
+  RealView memory;    // what holds them (allocateSweptFaces; empty when carved from a RemapStep's)
 };
 
-inline SweptFaces allocateSweptFaces(const Mesh& mesh) {
+// The swept regions carved out of `arena`: computeSweptFaces writes every
+// region, so the memory may hold anything before.
+inline SweptFaces carveSweptFaces(const Mesh& mesh, WorkArena& arena) {
   const Index n_regions = kSweptRegionsPerCell * mesh.n_cells;
-  return {RealView("lagremap::remap::dvol_r", n_regions),
-          Vec3View("lagremap::remap::moment_r", n_regions)};
+  SweptFaces swept;
+  swept.dvol_r = arena.carve<RealView>(n_regions);
+  swept.moment_r = arena.carve<Vec3View>(n_regions);
+  return swept;
+}
+
+// The same in memory of their own (label lagremap::remap::swept_faces).
+inline SweptFaces allocateSweptFaces(const Mesh& mesh) {
+  WorkArena size;
+  carveSweptFaces(mesh, size);
+  const RealView memory("lagremap::remap::swept_faces", size.used());
+  WorkArena arena(memory);
+  SweptFaces swept = carveSweptFaces(mesh, arena);
+  swept.memory = memory;
+  return swept;
 }
 
 namespace swept {

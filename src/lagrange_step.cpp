@@ -53,11 +53,6 @@ StepLimit LagrangeStep::computeGeometry() {
   return overAllRanks(lagremap::computeGeometry(mesh_, state_, numerics_.step, numerics_.kernels));
 }
 
-StepLimit LagrangeStep::computeGeometry(const CellGeometryView& known_geometry) {
-  auto scope = timers_.scope(Phase::Geometry);
-  return overAllRanks(lagremap::computeGeometry(mesh_, state_, numerics_.step, known_geometry));
-}
-
 StepLimit LagrangeStep::advance(double dt, long step) {
   saveStartOfStep();
   if (numerics_.order == 1) return stage(dt, true);  // forward Euler

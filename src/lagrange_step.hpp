@@ -51,9 +51,6 @@ class LagrangeStep {
   // Geometry and thermodynamics of the current node positions; returns the
   // time-step candidate (negative for an invalid cell).
   StepLimit computeGeometry();
-  // The same where the geometry of the current node positions is known (the
-  // remap's target mesh, RemapStep::targetGeometry).
-  StepLimit computeGeometry(const CellGeometryView& known_geometry);
   // One step t^n -> t^{n+1} from a state whose geometry is current; returns
   // the time-step candidate of t^{n+1} (negative for an invalid cell). Throws
   // RunFailure if the half-step state is invalid; the start-of-step copy is kept.

@@ -1,6 +1,10 @@
 #include "mesh_setup.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <map>
 #include <random>
 #include <stdexcept>
 #include <vector>
@@ -41,9 +45,9 @@ struct HostBlockMesh {
   Vec3View::HostMirror x;
   CellNodesView::HostMirror nodes;
   CellFacesView::HostMirror neighbors, side, neighbor_face;
-  std::vector<Index> corner_offsets, corners;  // node -> corner CRS
-  Kokkos::View<int*, HostSpace> constrained;
-  Sym6View::HostMirror projector;
+  std::vector<Index> corner_offsets, corners;           // node -> corner CRS
+  Kokkos::View<int*, HostSpace> projector_id;           // -1: free; else its row of projectors
+  std::vector<SymMat3> projectors;                      // the distinct ones
   std::vector<Index> traction_offsets, traction_faces;  // node -> traction face CRS
 };
 
@@ -224,21 +228,31 @@ SymMat3 nodeProjector(unsigned sides, const std::array<Vec3, kNumSides>& side_no
   return projector;
 }
 
-// Boundary constraints (constrained flag, projector) and the node -> traction
-// face CRS of every node.
+// Boundary constraints (each constrained node's projector, one row per
+// distinct projector: a wall's nodes share theirs, the bits decide) and the
+// node -> traction face CRS of every node.
 void boundaryConstraints(const SideBoundaries& boundaries, Index n_cells, Index n_nodes,
                          HostBlockMesh& host) {
   const NodeSides node_sides = nodeSides(host, boundaries, n_cells, n_nodes);
-  host.constrained = Kokkos::View<int*, HostSpace>("lagremap::mesh::node_constrained", n_nodes);
-  host.projector = Sym6View::HostMirror("lagremap::mesh::node_projector", n_nodes);
+  host.projector_id = Kokkos::View<int*, HostSpace>("lagremap::mesh::node_projector_id", n_nodes);
+  host.projectors.clear();
+  std::map<std::array<std::uint64_t, 6>, int> row_of;  // by bits: -0 is not +0
   host.traction_offsets.assign(n_nodes + 1, 0);
   host.traction_faces.clear();
   for (Index n = 0; n < n_nodes; ++n) {
     int n_constraints = 0;
     const SymMat3 projector =
         nodeProjector(node_sides.sides[n], node_sides.normal[n], boundaries, n_constraints);
-    host.constrained(n) = n_constraints > 0 ? 1 : 0;
-    storeSym(host.projector, n, projector);
+    host.projector_id(n) = -1;
+    if (n_constraints > 0) {
+      const double entries[6] = {projector.xx, projector.yy, projector.zz,
+                                 projector.xy, projector.yz, projector.xz};
+      std::array<std::uint64_t, 6> key;
+      std::memcpy(key.data(), entries, sizeof entries);
+      const auto [row, added] = row_of.try_emplace(key, int(host.projectors.size()));
+      if (added) host.projectors.push_back(projector);
+      host.projector_id(n) = row->second;
+    }
     const std::vector<Index>& faces = node_sides.traction_faces[n];
     host.traction_offsets[n + 1] = host.traction_offsets[n] + Index(faces.size());
     host.traction_faces.insert(host.traction_faces.end(), faces.begin(), faces.end());
@@ -268,8 +282,11 @@ void uploadMesh(const HostBlockMesh& host, Mesh& mesh) {
   upload(host.neighbors, mesh.cell_neighbors);
   upload(host.side, mesh.cell_face_side);
   upload(host.neighbor_face, mesh.cell_neighbor_face);
-  upload(host.constrained, mesh.node_constrained);
-  upload(host.projector, mesh.node_projector);
+  upload(host.projector_id, mesh.node_projector_id);
+  Sym6View::HostMirror projectors("lagremap::mesh::projectors", host.projectors.size());
+  for (std::size_t i = 0; i < host.projectors.size(); ++i)
+    storeSym(projectors, i, host.projectors[i]);
+  upload(projectors, mesh.projectors);
   mesh.node_corner_offsets = uploadList("lagremap::mesh::node_corner_offsets", host.corner_offsets);
   mesh.node_corners = uploadList("lagremap::mesh::node_corners", host.corners);
   orderNodesByFirstCorner(mesh);

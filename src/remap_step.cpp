@@ -1,8 +1,10 @@
 #include "remap_step.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "parallel.hpp"
+#include "state_setup.hpp"
 
 namespace lagremap {
 
@@ -39,9 +41,20 @@ RemapStep::RemapStep(Mesh& mesh, State& state, const RemapControls& controls, Ph
   const Index n_cells = mesh.n_cells;
   x_target_ = Vec3View("lagremap::remap::x_target", mesh.n_nodes);
   Kokkos::deep_copy(x_target_, mesh.x_n);
-  target_geometry_ = fixedMeshGeometry(mesh);
-  fields_ = allocateRemapFields(n_cells, layout_, controls.kernels);
-  swept_ = allocateSweptFaces(mesh);
+  // The remap's work arrays live within apply(); the state's corner arrays
+  // from a computeGeometry to the end of the next Lagrangian step, and the
+  // caller computes the geometry after each apply(): one allocation holds both.
+  WorkArena corners_size, work_size;
+  State sized;
+  carveCornerArrays(sized, n_cells, corners_size);
+  carveRemapFields(n_cells, layout_, controls.kernels, work_size);
+  carveSweptFaces(mesh, work_size);
+  shared_work_ =
+      RealView("lagremap::remap::shared_work", std::max(corners_size.used(), work_size.used()));
+  WorkArena corners(shared_work_), work(shared_work_);
+  carveCornerArrays(state, n_cells, corners);
+  fields_ = carveRemapFields(n_cells, layout_, controls.kernels, work);
+  swept_ = carveSweptFaces(mesh, work);
   m_c_saved_ = RealView("lagremap::remap::m_c_saved", n_cells);
   alpha_ck_saved_ = MatRealView("lagremap::remap::alpha_ck_saved", n_cells, state.n_materials);
   m_ck_saved_ = MatRealView("lagremap::remap::m_ck_saved", n_cells, state.n_materials);

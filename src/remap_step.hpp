@@ -21,7 +21,9 @@ RemapLayout makeRemapLayout(const State& state);
 
 class RemapStep {
  public:
-  // Keeps the mesh's current node positions as the remap target.
+  // Keeps the mesh's current node positions as the remap target. Moves the
+  // state's corner arrays into the memory of its work arrays (their values
+  // kept): the caller computes the geometry after each apply().
   RemapStep(Mesh& mesh, State& state, const RemapControls& controls, PhaseTimers& timers,
             const Halo* halo = nullptr);
 
@@ -35,8 +37,8 @@ class RemapStep {
 
   const RemapLayout& layout() const { return layout_; }
   const Vec3View& targetPositions() const { return x_target_; }
-  // Geometry of the target mesh, where apply() leaves the nodes.
-  const CellGeometryView& targetGeometry() const { return target_geometry_; }
+  // The memory of the work arrays and the state's corner arrays.
+  const RealView& sharedWork() const { return shared_work_; }
 
  private:
   Mesh& mesh_;
@@ -46,7 +48,7 @@ class RemapStep {
   const Halo* halo_;
   RemapLayout layout_;
   Vec3View x_target_;
-  CellGeometryView target_geometry_;
+  RealView shared_work_;
   RemapFields fields_;
   SweptFaces swept_;
   RealView m_c_saved_;

@@ -127,7 +127,7 @@ namespace {
 
 // The material table, and undeformed solids: B = I (S = 0 as allocated).
 void uploadMaterials(const std::vector<MaterialParams>& materials, State& state) {
-  if (state.has_solids) {
+  if (state.B_ck.size() > 0) {
     auto B_host = Kokkos::create_mirror_view(state.B_ck);
     for (Index c = 0; c < Index(B_host.extent(0)); ++c)
       for (int k = 0; k < state.n_materials; ++k) storeSym(B_host, c, k, identitySym());
@@ -164,11 +164,12 @@ void initializeState(const ProblemSetup& setup, State& state) {
   if (n_materials < 1 || !sizes_ok) {
     throw std::logic_error("problem set-up gave initial data of the wrong size");
   }
-  bool has_solids = false;
+  bool has_solids = false, has_neo_hookean = false;
   for (const MaterialParams& material : setup.materials) {
     has_solids = has_solids || material.strength != StrengthKind::None;
+    has_neo_hookean = has_neo_hookean || material.strength == StrengthKind::NeoHookean;
   }
-  allocateMaterialState(state, n_cells, n_materials, has_solids);
+  allocateMaterialState(state, n_cells, n_materials, has_solids, has_neo_hookean);
 
   std::vector<double> volume;
   std::vector<Vec3> centroid;

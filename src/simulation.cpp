@@ -67,21 +67,23 @@ Simulation::Simulation(const RunOptions& options, const Problem& problem)
   setup_seconds_.decompose = phase.seconds();
   phase.reset();
   Mesh& mesh = setup_.mesh;
-  state_ = allocateState(mesh, numerics_.gather == Gather::Atomics);
+  // (in remap mode the remap step gives the corner arrays their memory)
+  state_ = allocateState(mesh, numerics_.gather == Gather::Atomics, !config.remapMode());
   collectively([&] { initializeState(setup_, state_); });
+  setup_.cells = InitialCells();  // uploaded: its host copy goes (72 bytes a cell of taylor)
 
   lagrange_ = std::make_unique<LagrangeStep>(mesh, state_, numerics_, timers_, halo_.get());
-  limit_ = lagrange_->computeGeometry();
-  if (limit_.val < 0.0) {
-    throw ConfigError("initial state is invalid: " + describeInvalidCell(limit_, 0, "set-up"));
-  }
-  lagrange_->saveStartOfStep();
   if (config.remapMode()) {
     RemapControls controls = readRemapControls(config, state_);
     controls.kernels = numerics_.kernels;
     remap_ = makeRemapStep(mesh, state_, controls, timers_, halo_.get(), options.problem);
     lagrange_->remapFollowsEveryStep();
   }
+  limit_ = lagrange_->computeGeometry();
+  if (limit_.val < 0.0) {
+    throw ConfigError("initial state is invalid: " + describeInvalidCell(limit_, 0, "set-up"));
+  }
+  lagrange_->saveStartOfStep();
 
   // restart (docs/method.md §7.5): the evolved state and the loop's counters of a
   // checkpoint; the derived fields follow from the same geometry kernel.
@@ -200,7 +202,7 @@ void Simulation::advance(const TimeStepChoice& choice) {
     // remap onto the initial mesh (docs/method.md §A9): densities, gradients, swept
     // regions, fluxes, energy fix; then the time step of the remapped state
     crossed = remap_->apply();
-    limit_ = lagrange_->computeGeometry(remap_->targetGeometry());
+    limit_ = lagrange_->computeGeometry();
     if (limit_.val < 0.0) {
       remap_->restoreStartOfStep();
       throw RunFailure(describeInvalidCell(limit_, next, "after the remap"));

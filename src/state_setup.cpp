@@ -4,7 +4,7 @@
 
 namespace lagremap {
 
-State allocateState(const Mesh& mesh, bool with_atomics_gather) {
+State allocateState(const Mesh& mesh, bool with_atomics_gather, bool own_corner_arrays) {
   const Index nc = mesh.n_cells, nn = mesh.n_nodes, ncorner = 8 * mesh.n_cells;
   State s;
   auto cells = [&](const char* name) {
@@ -29,9 +29,11 @@ State allocateState(const Mesh& mesh, bool with_atomics_gather) {
   s.x_n0 = Vec3View("lagremap::state::x_n0", nn);
   s.v_c0 = cells3("v_c0");
   s.E_c0 = cells("E_c0");
-  s.A_cp = Vec3View("lagremap::state::A_cp", ncorner);
-  s.M_cp = Sym6View("lagremap::state::M_cp", ncorner);
-  s.B_cp = Vec3View("lagremap::state::B_cp", ncorner);
+  if (own_corner_arrays) {
+    s.A_cp = Vec3View("lagremap::state::A_cp", ncorner);
+    s.M_cp = Sym6View("lagremap::state::M_cp", ncorner);
+    s.B_cp = Vec3View("lagremap::state::B_cp", ncorner);
+  }
   s.v_n = Vec3View("lagremap::state::v_n", nn);
   s.x_n_next = Vec3View("lagremap::state::x_n_next", nn);
   s.f_ext_n = Vec3View("lagremap::state::f_ext_n", nn);
@@ -42,14 +44,31 @@ State allocateState(const Mesh& mesh, bool with_atomics_gather) {
   return s;
 }
 
-void allocateMaterialState(State& s, Index n_cells, int n_materials, bool has_solids) {
+namespace {
+// `carved` takes the place of `view`, with its values when it had any.
+template <class ViewType>
+void moveInto(ViewType& view, const ViewType& carved) {
+  if (view.size() > 0) Kokkos::deep_copy(carved, view);
+  view = carved;
+}
+}  // namespace
+
+void carveCornerArrays(State& s, Index n_cells, WorkArena& arena) {
+  const Index ncorner = 8 * n_cells;
+  moveInto(s.A_cp, arena.carve<Vec3View>(ncorner));
+  moveInto(s.M_cp, arena.carve<Sym6View>(ncorner));
+  moveInto(s.B_cp, arena.carve<Vec3View>(ncorner));
+}
+
+void allocateMaterialState(State& s, Index n_cells, int n_materials, bool has_solids,
+                           bool has_neo_hookean) {
   auto scalars = [&](const char* name) {
     return MatRealView(std::string("lagremap::state::") + name, n_cells, n_materials);
   };
   // Tensors exist only when some material has strength: a gas run carries none.
   const Index tensor_cells = has_solids ? n_cells : 0;
-  auto tensors = [&](const char* name) {
-    return MatSym6View(std::string("lagremap::state::") + name, tensor_cells, n_materials);
+  auto tensors = [&](const char* name, Index cells) {
+    return MatSym6View(std::string("lagremap::state::") + name, cells, n_materials);
   };
   s.n_materials = n_materials;
   s.has_solids = has_solids;
@@ -63,10 +82,11 @@ void allocateMaterialState(State& s, Index n_cells, int n_materials, bool has_so
   s.p_ck0 = scalars("p_ck0");
   s.alpha_ck0 = scalars("alpha_ck0");
   s.vol_c0 = RealView("lagremap::state::vol_c0", n_cells);
-  s.S_ck = tensors("S_ck");
-  s.S_ck0 = tensors("S_ck0");
-  s.B_ck = tensors("B_ck");
-  s.B_ck0 = tensors("B_ck0");
+  s.S_ck = tensors("S_ck", tensor_cells);
+  s.S_ck0 = tensors("S_ck0", tensor_cells);
+  const Index left_cauchy_green_cells = has_neo_hookean ? n_cells : 0;
+  s.B_ck = tensors("B_ck", left_cauchy_green_cells);
+  s.B_ck0 = tensors("B_ck0", left_cauchy_green_cells);
   s.n_ck = MatVec3View("lagremap::state::n_ck", has_solids && n_materials > 1 ? n_cells : 0,
                        n_materials);
 }
