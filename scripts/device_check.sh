@@ -7,8 +7,8 @@
 #        scripts/device_check.sh [--stage DIR] [--report DIR] [--skip-gpu]
 # It unpacks the stage, builds Kokkos 3.4.01 (CUDA + Serial, the arch of the GPU
 # found by nvidia-smi, else LAGREMAP_CUDA_ARCH or 90) and every lagremap target
-# against it, then on the GPU runs the quick ctest set, `sedov`, `taylor --mode
-# remap --scale 0.5` and the kernel benchmarks, and writes one report folder:
+# against it, then on the GPU runs `sedov`, `taylor --mode remap --scale 0.5`,
+# the kernel benchmarks and the quick ctest set, and writes one report folder:
 #   report/summary.txt      what ran, pass/fail, the nvidia-smi line, the kernels'
 #                           registers, stack and spills, FOM lines (per phase too)
 #   report/gpu_resources.txt  perf/gpu_resources.sh --check for the GPU's arch
@@ -134,10 +134,6 @@ fi
 
 # --- on the GPU
 status=0
-(cd "$build" && ctest -L quick --output-on-failure --timeout 600) > "$report/ctest.txt" 2>&1 || status=1
-say "ctest quick: $(grep -E 'tests passed|tests failed' "$report/ctest.txt" | tail -n 1)"
-grep -E '^\s+[0-9]+ - ' "$report/ctest.txt" | sed 's/^/  failed: /' | tee -a "$summary"
-
 run_case() {
   local name=$1
   shift
@@ -162,5 +158,12 @@ for bench in bench_lagrange bench_constitutive; do
   say "$bench: $(grep -c '"name"' "$report/$bench.json" 2>/dev/null || echo 0) benchmarks (report/$bench.json)"
   grep -E '^BM_' "$report/$bench.txt" | sed 's/^/  /' >> "$summary"
 done
+# The quick tests last (the numbers above come first): several at once, the
+# GPU shared by their processes, half the cores (the MPI tests start ranks).
+ctest_jobs=$(((jobs + 1) / 2))
+t0=$(date +%s)
+(cd "$build" && ctest -L quick -j "$ctest_jobs" --output-on-failure --timeout 600) > "$report/ctest.txt" 2>&1 || status=1
+say "ctest quick ($ctest_jobs at a time, $(($(date +%s) - t0)) s): $(grep -E 'tests passed|tests failed' "$report/ctest.txt" | tail -n 1)"
+grep -E '^\s+[0-9]+ - ' "$report/ctest.txt" | sed 's/^/  failed: /' | tee -a "$summary"
 say "status: $([ $status -eq 0 ] && echo 'all passed' || echo 'FAILURES above')"
 exit $status

@@ -98,8 +98,15 @@ StepLimit LagrangeStep::stage(double dt_stage, bool last_stage) {
   return overAllRanks(limit);
 }
 
-void LagrangeStep::saveStartOfStep() {
+void LagrangeStep::remapFollowsEveryStep() {
+  remap_follows_ = true;
   Kokkos::deep_copy(state_.x_n0, mesh_.x_n);
+}
+
+void LagrangeStep::saveStartOfStep() {
+  // (with a remap after every step the nodes start each step on the remap's
+  // target, which x_n0 holds: RemapStep)
+  if (!remap_follows_) Kokkos::deep_copy(state_.x_n0, mesh_.x_n);
   Kokkos::deep_copy(state_.v_c0, state_.v_c);
   Kokkos::deep_copy(state_.E_c0, state_.E_c);
   Kokkos::deep_copy(state_.e_ck0, state_.e_ck);

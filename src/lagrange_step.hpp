@@ -63,7 +63,10 @@ class LagrangeStep {
   // on its target mesh: the last stage of a step then computes only what the
   // remap reads (StageEnd::ForRemap), and advance() returns no time-step
   // candidate, only a failure (a negative value) where the state is invalid.
-  void remapFollowsEveryStep() { remap_follows_ = true; }
+  // Every step then starts on the target, the nodes' present positions,
+  // which State::x_n0 keeps from here on (the remap's target too, RemapStep):
+  // saveStartOfStep leaves it.
+  void remapFollowsEveryStep();
 
  private:
   // Corner terms, nodal solve, then cell update and geometry at the new

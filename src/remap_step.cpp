@@ -39,8 +39,9 @@ RemapStep::RemapStep(Mesh& mesh, State& state, const RemapControls& controls, Ph
       halo_(halo),
       layout_(makeRemapLayout(state)) {
   const Index n_cells = mesh.n_cells;
-  x_target_ = Vec3View("lagremap::remap::x_target", mesh.n_nodes);
-  Kokkos::deep_copy(x_target_, mesh.x_n);
+  // The target, the mesh's current nodes, is where every step starts: the
+  // state's start-of-step positions hold it (LagrangeStep::remapFollowsEveryStep).
+  Kokkos::deep_copy(state.x_n0, mesh.x_n);
   // The remap's work arrays live within apply(); the state's corner arrays
   // from a computeGeometry to the end of the next Lagrangian step, and the
   // caller computes the geometry after each apply(): one allocation holds both.
@@ -70,9 +71,9 @@ RemapBoundaryFlux RemapStep::apply() {
     Kokkos::deep_copy(m_ck_saved_, state_.m_ck);
     remapDensities(state_, layout_, fields_);
     remapGradients(mesh_, state_, layout_, controls_, fields_);
-    computeSweptFaces(mesh_, mesh_.x_n, x_target_, swept_, controls_.kernels);
+    computeSweptFaces(mesh_, mesh_.x_n, state_.x_n0, swept_, controls_.kernels);
     crossed = remapUpdate(mesh_, state_, layout_, controls_, fields_, swept_);
-    Kokkos::deep_copy(mesh_.x_n, x_target_);
+    Kokkos::deep_copy(mesh_.x_n, state_.x_n0);
   }
   if (halo_) {  // ghost cells: their owners' remapped state (docs/method.md §7.4, src/fields.hpp)
     auto scope = timers_.scope(Phase::Halo);

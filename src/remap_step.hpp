@@ -21,7 +21,9 @@ RemapLayout makeRemapLayout(const State& state);
 
 class RemapStep {
  public:
-  // Keeps the mesh's current node positions as the remap target. Moves the
+  // Keeps the mesh's current node positions as the remap target (in
+  // State::x_n0, where every step starts: the caller's LagrangeStep is told
+  // remapFollowsEveryStep, or saves the start of each step). Moves the
   // state's corner arrays into the memory of its work arrays (their values
   // kept): the caller computes the geometry after each apply().
   RemapStep(Mesh& mesh, State& state, const RemapControls& controls, PhaseTimers& timers,
@@ -36,7 +38,6 @@ class RemapStep {
   void restoreStartOfStep();
 
   const RemapLayout& layout() const { return layout_; }
-  const Vec3View& targetPositions() const { return x_target_; }
   // The memory of the work arrays and the state's corner arrays.
   const RealView& sharedWork() const { return shared_work_; }
 
@@ -47,7 +48,6 @@ class RemapStep {
   PhaseTimers& timers_;
   const Halo* halo_;
   RemapLayout layout_;
-  Vec3View x_target_;
   RealView shared_work_;
   RemapFields fields_;
   SweptFaces swept_;
