@@ -306,42 +306,23 @@ KOKKOS_INLINE_FUNCTION CornerImpedance cellThermoOnShape(const hex::CellShape& s
   return coefficients;
 }
 
-// A corner's impedance M_cp from its corner-face sums.
-KOKKOS_FORCEINLINE_FUNCTION SymMat3 cornerImpedance(const CornerImpedance& coefficients,
-                                                    const SymMat3& normal_moment, double area) {
-  SymMat3 impedance = coefficients.normal_part * normal_moment;
-  impedance += identitySym(coefficients.transverse * area);
-  return impedance;
-}
-
 // One corner's vector A_cp and impedance M_cp from its corner-face sums.
 KOKKOS_INLINE_FUNCTION void storeCorner(const State& s, Index corner,
                                         const CornerImpedance& coefficients,
                                         const hex::CornerSums& sums) {
+  SymMat3 impedance = coefficients.normal_part * sums.normal_moment;
+  impedance += identitySym(coefficients.transverse * sums.area);
   storeVec3(s.A_cp, corner, sums.vector);
-  storeSym(s.M_cp, corner, cornerImpedance(coefficients, sums.normal_moment, sums.area));
+  storeSym(s.M_cp, corner, impedance);
 }
 
-// The above for a cell whose geometry is at hand (the fused form). A z
-// prism's corners p and p + 4 share their face sums (hex::prismGeometry):
-// one impedance for both.
-KOKKOS_INLINE_FUNCTION void cellThermoOnGeometry(const hex::CellGeometry& geo, bool z_prism,
-                                                 const State& s, const TimeStepControls& controls,
-                                                 Index c, StepLimit& best, bool end_of_stage,
+// The above for a cell whose geometry is at hand (the fused form).
+KOKKOS_INLINE_FUNCTION void cellThermoOnGeometry(const hex::CellGeometry& geo, const State& s,
+                                                 const TimeStepControls& controls, Index c,
+                                                 StepLimit& best, bool end_of_stage,
                                                  const StageRelaxation* relaxation = nullptr) {
   cellThermoOnShape(geo.shape, s, controls, c, best, end_of_stage, relaxation,
                     [&](const CornerImpedance& coefficients) {
-                      if (z_prism) {
-                        for (int p = 0; p < 4; ++p) {
-                          const SymMat3 impedance = cornerImpedance(
-                              coefficients, geo.normal_moment[p], geo.corner_face_area[p]);
-                          storeVec3(s.A_cp, 8 * c + p, geo.corner[p]);
-                          storeVec3(s.A_cp, 8 * c + p + 4, geo.corner[p + 4]);
-                          storeSym(s.M_cp, 8 * c + p, impedance);
-                          storeSym(s.M_cp, 8 * c + p + 4, impedance);
-                        }
-                        return;
-                      }
                       for (int p = 0; p < 8; ++p) {
                         storeCorner(s, 8 * c + p, coefficients,
                                     {geo.corner[p], geo.normal_moment[p], geo.corner_face_area[p]});
@@ -525,11 +506,10 @@ inline StepLimit computeGeometry(const Mesh& mesh, const State& state,
   const auto s = state;
   if constexpr (kFusedKernelsBuilt) {
     if (form == KernelForm::Fused) {
-      const bool z_prisms = mesh.z_prisms;
       return stepLimitOverCellGeometries<true>(
           "lagremap::geometry::cells", mesh,
           KOKKOS_LAMBDA(const Index c, const hex::CellGeometry& geometry, StepLimit& best) {
-            cellThermoOnGeometry(geometry, z_prisms, s, controls, c, best, false);
+            cellThermoOnGeometry(geometry, s, controls, c, best, false);
           });
     }
   }

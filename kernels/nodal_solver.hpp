@@ -1495,7 +1495,6 @@ inline StepLimit updateCellsAndGeometry(const Mesh& mesh, const State& state, do
   const auto cell_nodes = mesh.cell_nodes;
   const auto x_n = mesh.x_n;
   const auto s = state;
-  const bool z_prisms = mesh.z_prisms;
   if constexpr (kFusedKernelsBuilt) {
     if (form == KernelForm::Fused) {
       if (what == StageEnd::ForRemap) {
@@ -1512,7 +1511,7 @@ inline StepLimit updateCellsAndGeometry(const Mesh& mesh, const State& state, do
           KOKKOS_LAMBDA(const Index c, const hex::CellGeometry& geometry, StepLimit& best) {
             StageRelaxation relaxation;
             updateCell(cell_nodes, x_n, s, dt_stage, c, relaxation);
-            cellThermoOnGeometry(geometry, z_prisms, s, controls, c, best, true, &relaxation);
+            cellThermoOnGeometry(geometry, s, controls, c, best, true, &relaxation);
           });
     }
   }
@@ -1520,6 +1519,7 @@ inline StepLimit updateCellsAndGeometry(const Mesh& mesh, const State& state, do
   // the mixed cells' volume sharing, then the checks or the closure on the
   // shared volumes (a kernel each: together they held 154 registers on sm_90)
   if (state.n_materials > 1) shareVolumeChanges(mesh, state);
+  const bool z_prisms = mesh.z_prisms;
   if (what == StageEnd::ForRemap) {
     return stepLimitOverCellNodes(
         "lagremap::cell_update::shape", mesh,

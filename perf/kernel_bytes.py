@@ -70,7 +70,7 @@ VIEWS = {
     "remap::integral": ("cell", "V*8"), "remap::source_range": ("cell", "M*32"),
     "remap::dvol_r": ("cell", 12 * D), "remap::moment_r": ("cell", 12 * 3 * D),
     "remap::m_c_saved": ("cell", D),
-    "remap::alpha_ck_saved": ("cell", "M*8"), "remap::m_ck_saved": ("cell", "M*8"),
+    "remap::m_ck_saved": ("cell", "M*8"),
 }
 
 

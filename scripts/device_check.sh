@@ -7,7 +7,8 @@
 #        scripts/device_check.sh [--stage DIR] [--report DIR] [--skip-gpu]
 # It unpacks the stage, builds Kokkos 3.4.01 (CUDA + Serial, the arch of the GPU
 # found by nvidia-smi, else LAGREMAP_CUDA_ARCH or 90) and every lagremap target
-# against it, then on the GPU runs `sedov`, `taylor --mode remap --scale 0.5`,
+# against it, then on the GPU runs `sedov` (30^3 and 120^3), `taylor --mode
+# remap --scale 0.5`, the paper's four remap cases (taylor, beam, ball, shell),
 # the kernel benchmarks and the quick ctest set, and writes one report folder:
 #   report/summary.txt      what ran, pass/fail, the nvidia-smi line, the kernels'
 #                           registers, stack and spills, FOM lines (per phase too)
@@ -139,8 +140,9 @@ run_case() {
   shift
   local t0 rc=0
   t0=$(date +%s%N)
-  "$build/lagremap" "$@" --output "$work/out/$name" > "$report/$name.txt" 2>&1 || rc=$?
-  say "$name (exit $rc, $((($(date +%s%N) - t0) / 1000000)) ms): $(grep '^FOM' "$report/$name.txt" || echo 'no FOM line')"
+  timeout 300 "$build/lagremap" "$@" --output "$work/out/$name" > "$report/$name.txt" 2>&1 || rc=$?
+  say "$name (exit $rc, $((($(date +%s%N) - t0) / 1000000)) ms): $(grep '^lagremap:' "$report/$name.txt" | tail -n 1 | cut -d: -f2-)"
+  say "  $(grep '^FOM' "$report/$name.txt" || echo 'no FOM line')"
   grep -E '^check .*FAIL' "$report/$name.txt" | sed 's/^/  /' | tee -a "$summary"
   # the FOM of each phase (summary.json: cell-steps per second of its kernels)
   python3 -c 'import json, sys
@@ -151,6 +153,10 @@ print("  per phase [cell-steps/s]: " + ", ".join(f"{k} {v:.3g}" for k, v in rate
 }
 run_case sedov --problem sedov
 run_case taylor_remap_half --problem taylor --mode remap --scale 0.5
+# a mesh that fills the GPU (120^3 cells, to a quarter of the blast's time), and
+# the paper's four remap cases at its resolution
+run_case sedov_120 --problem sedov --scale 4 --t-end 0.25
+for case in taylor beam ball shell; do run_case "${case}_remap" --problem "$case" --mode remap; done
 
 for bench in bench_lagrange bench_constitutive; do
   "$build/perf/$bench" --benchmark_min_time=0.2 --benchmark_format=json \

@@ -57,7 +57,6 @@ RemapStep::RemapStep(Mesh& mesh, State& state, const RemapControls& controls, Ph
   fields_ = carveRemapFields(n_cells, layout_, controls.kernels, work);
   swept_ = carveSweptFaces(mesh, work);
   m_c_saved_ = RealView("lagremap::remap::m_c_saved", n_cells);
-  alpha_ck_saved_ = MatRealView("lagremap::remap::alpha_ck_saved", n_cells, state.n_materials);
   m_ck_saved_ = MatRealView("lagremap::remap::m_ck_saved", n_cells, state.n_materials);
   if (halo_) remapped_fields_ = remappedCellFields(state);
 }
@@ -67,7 +66,6 @@ RemapBoundaryFlux RemapStep::apply() {
   {
     auto scope = timers_.scope(Phase::Remap);
     Kokkos::deep_copy(m_c_saved_, state_.m_c);
-    Kokkos::deep_copy(alpha_ck_saved_, state_.alpha_ck);
     Kokkos::deep_copy(m_ck_saved_, state_.m_ck);
     remapDensities(state_, layout_, fields_);
     remapGradients(mesh_, state_, layout_, controls_, fields_);
@@ -85,7 +83,6 @@ RemapBoundaryFlux RemapStep::apply() {
 
 void RemapStep::restoreStartOfStep() {
   Kokkos::deep_copy(state_.m_c, m_c_saved_);
-  Kokkos::deep_copy(state_.alpha_ck, alpha_ck_saved_);
   Kokkos::deep_copy(state_.m_ck, m_ck_saved_);
 }
 

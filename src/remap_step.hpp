@@ -33,8 +33,10 @@ class RemapStep {
   // mesh back; returns what crossed the outer boundary (mass, momentum,
   // total energy). The geometry of the state is stale afterwards.
   RemapBoundaryFlux apply();
-  // Puts back the masses and volume fractions of the start of the last
-  // apply() (the Lagrangian step restores the rest of the state).
+  // Puts back the masses of the start of the last apply(), which the
+  // Lagrangian step does not change and so does not keep (its
+  // restoreStartOfStep puts back the rest of the state, volume fractions
+  // included).
   void restoreStartOfStep();
 
   const RemapLayout& layout() const { return layout_; }
@@ -52,7 +54,7 @@ class RemapStep {
   RemapFields fields_;
   SweptFaces swept_;
   RealView m_c_saved_;
-  MatRealView alpha_ck_saved_, m_ck_saved_;
+  MatRealView m_ck_saved_;
   std::vector<FieldRef> remapped_fields_;  // the halo's list, made once (src/fields.hpp)
 };
 
