@@ -1,6 +1,7 @@
 #include "checkpoint.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>

@@ -2,6 +2,7 @@
 
 #include <mpi.h>
 
+#include <cstdint>
 #include <deque>
 #include <functional>
 #include <queue>

@@ -3,6 +3,7 @@
 // (CONTRIBUTING.md style 7), checked through Kokkos Tools callbacks installed in-process.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <mutex>
 #include <regex>
 #include <set>
