@@ -47,7 +47,9 @@ constexpr double kBenchDtFraction = 0.2;
 class Bench {
  public:
   Bench(int n, long warmup_steps) {
-    const Problem& problem = findProblem("sedov");
+    const std::string sedov =
+        "sedov";  // named: GCC 13 warns of a temporary argument (-Wdangling-reference)
+    const Problem& problem = findProblem(sedov);
     Config config = declareConfig(problem);
     config.set("mesh.nx", std::to_string(n));
     config.set("mesh.ny", std::to_string(n));

@@ -73,6 +73,10 @@ export LD_LIBRARY_PATH="$lib:$lib/openmpi/lib:$lib/hdf5/openmpi${LD_LIBRARY_PATH
 # Open MPI relocated to the prefix: its wrapper data, help files and plugins.
 export OPAL_PREFIX="$prefix/usr" OPAL_LIBDIR="$lib/openmpi/lib"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+# Its PMIx looks for plugins where Debian puts them; a machine with a PMIx of
+# its own there has plugins of another version (their load errors went to
+# every run's stderr): the staged ones.
+export PMIX_MCA_mca_base_component_path="$lib/pmix2/lib/pmix" PMIX_MCA_pcompress_base_silence_warning=1
 
 # --- Kokkos (CUDA + Serial) from the staged, patched source
 src="$work/kokkos-src/kokkos-3.4.01"

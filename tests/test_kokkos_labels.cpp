@@ -8,7 +8,9 @@
 #include <regex>
 #include <set>
 #include <string>
+#include <vector>
 
+#include "kernels/kernel_form.hpp"
 #include "test_support.hpp"
 
 namespace lagremap {
@@ -38,9 +40,15 @@ TEST(KokkosTools, EveryLaunchAndViewIsLabelledAndEachPhaseIsARegion) {
   tools::set_begin_parallel_scan_callback(onBeginKernel);
   tools::set_push_region_callback(onPushRegion);
   tools::set_allocate_data_callback(onAllocate);
-  for (const char* gather : {"crs", "atomics"}) {
-    runProblem(testing::problemOptions(
-        "sod", {"mesh.nx=20", "t_end=0.01", std::string("numerics.gather=") + gather}));
+  // each kernel form the build has (the fused one on CPU backends only), both gathers
+  std::vector<std::string> forms{"staged"};
+  if (kFusedKernelsBuilt) forms.push_back("fused");
+  for (const std::string& form : forms) {
+    for (const char* gather : {"crs", "atomics"}) {
+      runProblem(testing::problemOptions(
+          "sod", {"mesh.nx=20", "t_end=0.01", std::string("numerics.gather=") + gather,
+                  "numerics.kernels=" + form}));
+    }
   }
   tools::set_begin_parallel_for_callback(nullptr);
   tools::set_begin_parallel_reduce_callback(nullptr);
@@ -66,10 +74,19 @@ TEST(KokkosTools, EveryLaunchAndViewIsLabelledAndEachPhaseIsARegion) {
     EXPECT_TRUE(std::regex_match(kernel, ours)) << "unlabelled kernel: " << kernel;
     ++labelled;
   }
-  for (const char* expected :
-       {"lagremap::geometry::cells", "lagremap::corners::reconstruct_and_impedance",
-        "lagremap::nodal_solve::crs_gather", "lagremap::nodal_solve::atomics_sum",
-        "lagremap::cell_update::update_and_geometry", "lagremap::diagnostics::cell_totals"}) {
+  std::vector<std::string> expected_kernels{"lagremap::geometry::cells",
+                                            "lagremap::nodal_solve::crs_gather",
+                                            "lagremap::nodal_solve::atomics_sum",
+                                            "lagremap::diagnostics::cell_totals",
+                                            "lagremap::corners::velocity_limiter",
+                                            "lagremap::corners::right_hand_sides",
+                                            "lagremap::cell_update::corner_forces",
+                                            "lagremap::cell_update::geometry"};
+  if (kFusedKernelsBuilt) {
+    expected_kernels.insert(expected_kernels.end(), {"lagremap::corners::reconstruct_and_impedance",
+                                                     "lagremap::cell_update::update_and_geometry"});
+  }
+  for (const std::string& expected : expected_kernels) {
     EXPECT_EQ(g_kernels.count(expected), 1u) << expected;
   }
   EXPECT_GE(labelled, 6);

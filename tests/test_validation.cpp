@@ -121,7 +121,7 @@ TEST(Validation, ShellStopsWhereHowellBallSayAtEverySpeed) {
   const RunResult remapped =
       runProblem(testing::problemOptions("shell", {"shell.v0=250"}, 0.5, "remap"));
   ASSERT_FALSE(remapped.failed) << remapped.failure;
-  const Check& remap_speed = shellCheck(remapped, "final_inward_speed");
+  const Check remap_speed = shellCheck(remapped, "final_inward_speed");
   std::printf("shell remap V0 = 250: final_inward_speed %.6g (tolerance %.3g)\n", remap_speed.value,
               remap_speed.tolerance);
   EXPECT_TRUE(remap_speed.counts() && remap_speed.pass());
@@ -129,7 +129,7 @@ TEST(Validation, ShellStopsWhereHowellBallSayAtEverySpeed) {
   const RunResult soft = runProblem(
       testing::problemOptions("shell", {"shell.v0=300", "be.mu=1.519e8", "t_end=1.6e-4"}));
   ASSERT_FALSE(soft.failed) << soft.failure;
-  const Check& soft_speed = shellCheck(soft, "final_inward_speed");
+  const Check soft_speed = shellCheck(soft, "final_inward_speed");
   std::printf("shell too soft to stop: final_inward_speed %.6g (tolerance %.3g)\n",
               soft_speed.value, soft_speed.tolerance);
   EXPECT_TRUE(soft_speed.counts());
