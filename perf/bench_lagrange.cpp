@@ -47,8 +47,9 @@ constexpr double kBenchDtFraction = 0.2;
 class Bench {
  public:
   Bench(int n, long warmup_steps) {
-    const std::string sedov =
-        "sedov";  // named: GCC 13 warns of a temporary argument (-Wdangling-reference)
+    // (a named argument: GCC 13 warns of a reference returned from a call
+    // with a temporary one, -Wdangling-reference)
+    const std::string sedov = "sedov";
     const Problem& problem = findProblem(sedov);
     Config config = declareConfig(problem);
     config.set("mesh.nx", std::to_string(n));
