@@ -77,6 +77,8 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_
 # its own there has plugins of another version (their load errors went to
 # every run's stderr): the staged ones.
 export PMIX_MCA_mca_base_component_path="$lib/pmix2/lib/pmix" PMIX_MCA_pcompress_base_silence_warning=1
+# CMake runs of the tests (the installed package's consumer) find the staged packages.
+export CMAKE_PREFIX_PATH="$prefix/usr:$lib/cmake${CMAKE_PREFIX_PATH:+:$CMAKE_PREFIX_PATH}"
 
 # --- Kokkos (CUDA + Serial) from the staged, patched source
 src="$work/kokkos-src/kokkos-3.4.01"
