@@ -8,6 +8,7 @@
 #include <limits>
 #include <map>
 #include <random>
+#include <set>
 
 #include "src/diagnostics.hpp"
 #include "src/lagrange_step.hpp"
@@ -280,6 +281,28 @@ TEST(Remap, SharedWorkMemoryCarriesNothingFromOnePhaseToTheNext) {
     EXPECT_EQ(0, std::memcmp(clean.data(), poisoned.data(), clean.size() * sizeof(double)))
         << (form == KernelForm::Fused ? "fused" : "staged");
   }
+}
+
+// Views carved end to end whose sizes are whole 4 KiB pages start at
+// different places within a page (no two at one index share a cache set's
+// offset: the 4K-aliasing stall, data/work_arena.hpp), at 128-byte
+// boundaries, inside the memory; the sizing pass counts what carving takes.
+TEST(WorkArena, ViewsOfWholePagesStartAtDifferentPlacesInAPage) {
+  WorkArena sizing;
+  for (int k = 0; k < 6; ++k) sizing.carve<MatRealView>(Index(1024), 4);
+  const RealView memory("lagremap::test::arena", sizing.used());
+  WorkArena arena(memory);
+  std::set<std::size_t> places;
+  for (int k = 0; k < 6; ++k) {
+    const MatRealView view = arena.carve<MatRealView>(Index(1024), 4);  // 32 KiB
+    const std::size_t offset = std::size_t(view.data() - memory.data()) * sizeof(Real);
+    EXPECT_EQ(offset % 128, 0u);
+    EXPECT_LE(offset + view.span() * sizeof(Real), memory.span() * sizeof(Real));
+    places.insert(offset % 4096);
+  }
+  EXPECT_EQ(places.size(), 6u);
+  EXPECT_EQ(arena.used(), sizing.used());
+  EXPECT_THROW(arena.carve<RealView>(Index(1)), std::logic_error);
 }
 
 // A step that fails after its remap (an invalid geometry on the target)
