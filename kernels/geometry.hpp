@@ -420,7 +420,7 @@ KOKKOS_INLINE_FUNCTION int chunkCells(Index n_cells, Index first) {
 // updates cell c and folds its candidates into `best`. A ghost cell's go to a
 // scratch value: they are its owner's to propose.
 template <class CellUpdate>
-StepLimit stepLimitOverCells(const char* label, const Mesh& mesh, const CellUpdate& cell) {
+static StepLimit stepLimitOverCells(const char* label, const Mesh& mesh, const CellUpdate& cell) {
   const auto owned = mesh.cell_owned;
   StepLimit limit;
   Kokkos::parallel_reduce(
@@ -437,7 +437,7 @@ StepLimit stepLimitOverCells(const char* label, const Mesh& mesh, const CellUpda
 // chunk at a time (chunkGeometry): `cell(c, geometry, best)`, kCornerSums as
 // for hex::cellGeometry.
 template <bool kCornerSums, class CellUpdate>
-StepLimit stepLimitOverCellGeometries(const char* label, const Mesh& mesh, const CellUpdate& cell) {
+static StepLimit stepLimitOverCellGeometries(const char* label, const Mesh& mesh, const CellUpdate& cell) {
   const auto owned = mesh.cell_owned;
   const auto cell_nodes = mesh.cell_nodes;
   const auto x_n = mesh.x_n;
@@ -463,7 +463,7 @@ StepLimit stepLimitOverCellGeometries(const char* label, const Mesh& mesh, const
 // The same for the staged form: `cell(nodes, best)` gets the cell's nodes
 // (NodesOfCell).
 template <class CellUpdate>
-StepLimit stepLimitOverCellNodes(const char* label, const Mesh& mesh, const CellUpdate& cell) {
+static StepLimit stepLimitOverCellNodes(const char* label, const Mesh& mesh, const CellUpdate& cell) {
   const auto owned = mesh.cell_owned;
   const auto cell_nodes = mesh.cell_nodes;
   const auto x_n = mesh.x_n;
@@ -481,7 +481,7 @@ StepLimit stepLimitOverCellNodes(const char* label, const Mesh& mesh, const Cell
 // The staged form's volume sharing at the end of a stage: each mixed cell's
 // new volume shared among its materials (shareVolumeChange, from the
 // step-start state, the same bits as the fused form's).
-inline void shareVolumeChanges(const Mesh& mesh, const State& state) {
+static inline void shareVolumeChanges(const Mesh& mesh, const State& state) {
   const auto cell_nodes = mesh.cell_nodes;
   const auto x_n = mesh.x_n;
   const bool z_prisms = mesh.z_prisms;
@@ -500,7 +500,7 @@ inline void shareVolumeChanges(const Mesh& mesh, const State& state) {
 
 // Returns the smallest time-step candidate (or a negative value and the
 // failure code for an invalid cell).
-inline StepLimit computeGeometry(const Mesh& mesh, const State& state,
+static inline StepLimit computeGeometry(const Mesh& mesh, const State& state,
                                  const TimeStepControls& controls,
                                  KernelForm form = defaultKernelForm()) {
   const auto s = state;

@@ -825,7 +825,7 @@ inline CornerTerms cornerTerms(const Mesh& mesh, const State& state,
 // The fused form: one kernel, cells in the lanes of a vector where they can.
 // (a template: instantiated where it is called, never in a device build)
 template <class Terms>
-void computeFusedCornerTerms(const Mesh& mesh, const Terms& terms) {
+static void computeFusedCornerTerms(const Mesh& mesh, const Terms& terms) {
   const Index n_cells = mesh.n_cells;
   Kokkos::parallel_for(
       "lagremap::corners::reconstruct_and_impedance",
@@ -857,7 +857,7 @@ inline MatRealView allocateCornerRows(const Mesh& mesh) {
 // cell by cell, docs/method.md §7.1).
 // `rows`: the staged form's per-cell rows (allocateCornerRows, KernelForm::
 // Staged); without them the fused form runs (built on CPU backends only).
-inline void computeCornerTerms(const Mesh& mesh, const State& state, const CornerControls& controls,
+static inline void computeCornerTerms(const Mesh& mesh, const State& state, const CornerControls& controls,
                                const MatRealView& rows = {}) {
   const detail::CornerTerms terms = detail::cornerTerms(mesh, state, controls);
   if (terms.atomics) {
@@ -973,7 +973,7 @@ KOKKOS_FORCEINLINE_FUNCTION void prefetchCornerRecords(const State& s, const Ord
 }  // namespace detail
 
 // Solves every node and finds where it moves: x_n_next = x_n0 + dt_stage V_n.
-inline void nodalSolve(const Mesh& mesh, const State& state, const CornerControls& controls,
+static inline void nodalSolve(const Mesh& mesh, const State& state, const CornerControls& controls,
                        double dt_stage) {
   // The Views it reads, not the whole Mesh (whose global ids live on the host).
   const auto cell_face_side = mesh.cell_face_side;
@@ -1082,7 +1082,7 @@ inline void nodalSolve(const Mesh& mesh, const State& state, const CornerControl
 // A decomposed run's ghost nodes after the node exchange has given them their
 // owners' velocities: the positions x_n0 + dt_stage V_n, the same sum their
 // owners computed (nodalSolve), so the same bits.
-inline void moveGhostNodes(const Mesh& mesh, const State& state, double dt_stage) {
+static inline void moveGhostNodes(const Mesh& mesh, const State& state, double dt_stage) {
   const auto owned = mesh.node_owned;
   const auto x_n = mesh.x_n;
   const auto s = state;
@@ -1432,7 +1432,7 @@ KOKKOS_INLINE_FUNCTION void updateCell(const CellNodesView& cell_nodes, const Ve
 // One part of every cell's materials' update (the staged form), from the
 // cell's stored E and V.
 template <int kParts>
-void updateMaterialParts(const char* label, const Mesh& mesh, const State& state, double dt_stage) {
+static void updateMaterialParts(const char* label, const Mesh& mesh, const State& state, double dt_stage) {
   const auto cell_nodes = mesh.cell_nodes;
   const auto x_n = mesh.x_n;
   const auto s = state;
@@ -1448,7 +1448,7 @@ void updateMaterialParts(const char* label, const Mesh& mesh, const State& state
 // Every cell's update: the staged form runs the cells' motion and their
 // materials as two kernels (the materials' e_new = E - |V|^2/2 from the
 // stored E and V: the same bits).
-inline void updateCells(const Mesh& mesh, const State& state, double dt_stage,
+static inline void updateCells(const Mesh& mesh, const State& state, double dt_stage,
                         KernelForm form = defaultKernelForm()) {
   const auto cell_nodes = mesh.cell_nodes;
   const auto x_n = mesh.x_n;
@@ -1488,7 +1488,7 @@ inline void updateCells(const Mesh& mesh, const State& state, double dt_stage,
 // `what`: see StageEnd.
 // The staged form (KernelForm) runs the cell update and the geometry as two
 // kernels.
-inline StepLimit updateCellsAndGeometry(const Mesh& mesh, const State& state, double dt_stage,
+static inline StepLimit updateCellsAndGeometry(const Mesh& mesh, const State& state, double dt_stage,
                                         const TimeStepControls& controls,
                                         StageEnd what = StageEnd::Full,
                                         KernelForm form = defaultKernelForm()) {

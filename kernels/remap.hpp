@@ -144,7 +144,7 @@ using RemapBoundaryFlux = SumArray<5>;
 // triangle): alpha^k, rho^k = (alpha rho)^k / alpha^k, e^k = (alpha rho e)^k /
 // (alpha rho)^k, V = rho V / rho and T^k = (alpha T)^k / alpha^k; zero where
 // the cell does not have it (RemapLayout::hasPrimitive).
-inline void remapDensities(const State& state, const RemapLayout& layout,
+static inline void remapDensities(const State& state, const RemapLayout& layout,
                            const RemapFields& fields) {
   const auto s = state;
   const auto q = fields.density;
@@ -373,7 +373,7 @@ KOKKOS_FORCEINLINE_FUNCTION void cellGradients(const CellNodesView& cell_nodes,
 // vertex: every point of the cell is within it (remapUpdate's lever limit),
 // and each material's interface normal -grad alpha^k / |grad alpha^k|
 // (State::n_ck, for the stress relaxation of mixed cells, geometry.hpp).
-inline void remapGradients(const Mesh& mesh, const State& state, const RemapLayout& layout,
+static inline void remapGradients(const Mesh& mesh, const State& state, const RemapLayout& layout,
                            const RemapControls& controls, const RemapFields& fields) {
   const auto cell_nodes = mesh.cell_nodes;
   const auto neighbors = mesh.cell_neighbors;
@@ -755,7 +755,7 @@ KOKKOS_FORCEINLINE_FUNCTION void remapCell(const State& s, const CellFacesView& 
 // Sum of the upwind fluxes of the cell's 12 face-side regions, the new state on
 // the initial mesh, clean-up and kinetic-energy fix (docs/method.md §A9-A11). Returns what
 // crossed the outer boundary.
-inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state,
+static inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state,
                                      const RemapLayout& layout, const RemapControls& controls,
                                      const RemapFields& fields, const SweptFaces& swept) {
   const auto neighbors = mesh.cell_neighbors;

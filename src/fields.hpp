@@ -40,7 +40,7 @@ struct RowAccess {
 }  // namespace detail
 
 template <class ViewType>
-FieldRef fieldRef(const std::string& name, const ViewType& view) {
+static FieldRef fieldRef(const std::string& name, const ViewType& view) {
   constexpr int rank = int(ViewType::rank);
   static_assert(rank >= 1 && rank <= 3, "fieldRef: Views of rank 1 to 3");
   const int n1 = rank >= 2 ? int(view.extent(1)) : 1;
