@@ -69,7 +69,6 @@ VIEWS = {
     "remap::gradient": ("cell", "V*24"), "remap::reach": ("cell", D),
     "remap::integral": ("cell", "V*8"), "remap::source_range": ("cell", "M*32"),
     "remap::dvol_r": ("cell", 12 * D), "remap::moment_r": ("cell", 12 * 3 * D),
-    "remap::m_c_saved": ("cell", D),
     "remap::m_ck_saved": ("cell", "M*8"),
 }
 

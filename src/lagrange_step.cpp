@@ -3,6 +3,7 @@
 #include <utility>
 
 #include "parallel.hpp"
+#include "state_setup.hpp"
 
 namespace lagremap {
 
@@ -33,6 +34,12 @@ LagrangeStep::LagrangeStep(Mesh& mesh, State& state, const Numerics& numerics, P
                            const Halo* halo)
     : mesh_(mesh), state_(state), numerics_(numerics), timers_(timers), halo_(halo) {
   if (numerics_.kernels == KernelForm::Staged) corner_rows_ = allocateCornerRows(mesh_);
+  if (state_.has_solids) {
+    const auto materials = Kokkos::create_mirror_view_and_copy(HostSpace(), state_.materials);
+    for (int k = 0; k < state_.n_materials; ++k) {
+      if (materials(k).strength != StrengthKind::None) solid_materials_ |= 1u << k;
+    }
+  }
   if (halo_) {
     node_fields_ = {fieldRef("v_n", state_.v_n)};
     stage_end_fields_ = stageEndCellFields(state_);
@@ -117,7 +124,7 @@ void LagrangeStep::saveStartOfStep() {
     Kokkos::deep_copy(state_.vol_c0, state_.vol_c);
   }
   if (state_.has_solids) {  // fluids-only runs have no deviator or B to carry
-    Kokkos::deep_copy(state_.S_ck0, state_.S_ck);
+    copySolidDeviators(state_.S_ck0, state_.S_ck, solid_materials_);
     if (state_.has_neo_hookean) Kokkos::deep_copy(state_.B_ck0, state_.B_ck);
   }
 }
@@ -129,7 +136,7 @@ void LagrangeStep::restoreStartOfStep() {
   Kokkos::deep_copy(state_.e_ck, state_.e_ck0);
   if (state_.n_materials > 1) Kokkos::deep_copy(state_.alpha_ck, state_.alpha_ck0);
   if (state_.has_solids) {
-    Kokkos::deep_copy(state_.S_ck, state_.S_ck0);
+    copySolidDeviators(state_.S_ck, state_.S_ck0, solid_materials_);
     if (state_.has_neo_hookean) Kokkos::deep_copy(state_.B_ck, state_.B_ck0);
   }
   computeGeometry();

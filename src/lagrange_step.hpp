@@ -82,6 +82,8 @@ class LagrangeStep {
   PhaseTimers& timers_;
   const Halo* halo_;
   bool remap_follows_ = false;
+  // Bit k: material k has strength, a deviator to keep (State::materials).
+  unsigned solid_materials_ = 0;
   // The staged form's per-cell rows of the corner terms (empty: fused).
   MatRealView corner_rows_;
   // The halo's lists (src/fields.hpp), made once: the Views they name are

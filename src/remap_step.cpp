@@ -56,7 +56,6 @@ RemapStep::RemapStep(Mesh& mesh, State& state, const RemapControls& controls, Ph
   carveCornerArrays(state, n_cells, corners);
   fields_ = carveRemapFields(n_cells, layout_, controls.kernels, work);
   swept_ = carveSweptFaces(mesh, work);
-  m_c_saved_ = RealView("lagremap::remap::m_c_saved", n_cells);
   m_ck_saved_ = MatRealView("lagremap::remap::m_ck_saved", n_cells, state.n_materials);
   if (halo_) remapped_fields_ = remappedCellFields(state);
 }
@@ -65,7 +64,6 @@ RemapBoundaryFlux RemapStep::apply() {
   RemapBoundaryFlux crossed;
   {
     auto scope = timers_.scope(Phase::Remap);
-    Kokkos::deep_copy(m_c_saved_, state_.m_c);
     Kokkos::deep_copy(m_ck_saved_, state_.m_ck);
     remapDensities(state_, layout_, fields_);
     remapGradients(mesh_, state_, layout_, controls_, fields_);
@@ -82,8 +80,19 @@ RemapBoundaryFlux RemapStep::apply() {
 }
 
 void RemapStep::restoreStartOfStep() {
-  Kokkos::deep_copy(state_.m_c, m_c_saved_);
   Kokkos::deep_copy(state_.m_ck, m_ck_saved_);
+  // a cell's mass is the sum of its materials' in every state (the set-up's,
+  // the remap's, storeRemappedCell): the same sum gives the same bits
+  const auto m_c = state_.m_c;
+  const auto m_ck = state_.m_ck;
+  const int n_materials = state_.n_materials;
+  Kokkos::parallel_for(
+      "lagremap::remap::restore_cell_masses", Kokkos::RangePolicy<ExecSpace>(0, m_c.extent(0)),
+      KOKKOS_LAMBDA(const Index c) {
+        double mass = 0.0;
+        for (int k = 0; k < n_materials; ++k) mass += m_ck(c, k);
+        m_c(c) = mass;
+      });
 }
 
 }  // namespace lagremap

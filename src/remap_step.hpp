@@ -53,7 +53,6 @@ class RemapStep {
   RealView shared_work_;
   RemapFields fields_;
   SweptFaces swept_;
-  RealView m_c_saved_;
   MatRealView m_ck_saved_;
   std::vector<FieldRef> remapped_fields_;  // the halo's list, made once (src/fields.hpp)
 };

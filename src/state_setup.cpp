@@ -177,4 +177,16 @@ std::vector<FieldRef> remappedCellFields(const State& s) {
   return list;
 }
 
+void copySolidDeviators(const MatSym6View& to, const MatSym6View& from, unsigned solids) {
+  const int n_materials = int(to.extent(1));
+  Kokkos::parallel_for(
+      "lagremap::lagrange::solid_deviators", Kokkos::RangePolicy<ExecSpace>(0, to.extent(0)),
+      KOKKOS_LAMBDA(const Index c) {
+        for (int k = 0; k < n_materials; ++k) {
+          if ((solids >> k & 1u) == 0) continue;
+          for (int i = 0; i < 6; ++i) to(c, k, i) = from(c, k, i);
+        }
+      });
+}
+
 }  // namespace lagremap

@@ -22,4 +22,10 @@ void carveCornerArrays(State& state, Index n_cells, WorkArena& arena);
 void allocateMaterialState(State& state, Index n_cells, int n_materials, bool has_solids,
                            bool has_neo_hookean);
 
+// S^k of the materials in `solids` (bit k: material k has strength),
+// `from` -> `to` (the step-start copy and its restoring): a fluid's deviator
+// is zero throughout (nothing writes it), so half a two-material run's
+// tensor columns need no copy.
+void copySolidDeviators(const MatSym6View& to, const MatSym6View& from, unsigned solids);
+
 }  // namespace lagremap
