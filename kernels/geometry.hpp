@@ -5,6 +5,7 @@
 // all need only cell-local data, so one sweep does them while the 24
 // corner-face vectors are at hand. The cell's time-step candidates are reduced
 // to the most restrictive.
+// Its kernel launchers are `static` (internal linkage: docs/method.md §7.2).
 #pragma once
 
 #include "../data/mesh.hpp"

@@ -9,6 +9,7 @@
 //   updateCells:        per cell, F_cp = M_cp V_p - B_cp, momentum and energy.
 // The node sums use the node->corner CRS by default (race-free, bit-for-bit
 // reproducible for any thread count); `Gather::Atomics` scatters instead.
+// Its kernel launchers are `static` (internal linkage: docs/method.md §7.2).
 #pragma once
 
 #include "../data/mesh.hpp"

@@ -30,6 +30,7 @@
 // cell is chosen identically from both (ties at dV = 0 go to the lower cell
 // id), so the neighbour's flux is the exact negative of ours: every remapped
 // total is conserved to round-off without atomics, deterministically.
+// Its kernel launchers are `static` (internal linkage: docs/method.md §7.2).
 #pragma once
 
 #include "../data/mesh.hpp"

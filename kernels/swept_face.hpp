@@ -11,6 +11,7 @@
 //
 // Sign: dV_t > 0 when the triangle moves outward, i.e. cell c gains the region
 // from its neighbour across the face.
+// Its kernel launchers are `static` (internal linkage: docs/method.md §7.2).
 #pragma once
 
 #include "../data/mesh.hpp"

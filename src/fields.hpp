@@ -1,6 +1,7 @@
 // Per-cell and per-node Views of any shape seen as (entity, component) rows,
 // so the halo exchange and the checkpoint move "every field of the state"
 // without naming each View's type (docs/method.md §7.5).
+// Its kernel launchers are `static` (internal linkage: docs/method.md §7.2).
 #pragma once
 
 #include <functional>
