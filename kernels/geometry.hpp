@@ -438,7 +438,8 @@ static StepLimit stepLimitOverCells(const char* label, const Mesh& mesh, const C
 // chunk at a time (chunkGeometry): `cell(c, geometry, best)`, kCornerSums as
 // for hex::cellGeometry.
 template <bool kCornerSums, class CellUpdate>
-static StepLimit stepLimitOverCellGeometries(const char* label, const Mesh& mesh, const CellUpdate& cell) {
+static StepLimit stepLimitOverCellGeometries(const char* label, const Mesh& mesh,
+                                             const CellUpdate& cell) {
   const auto owned = mesh.cell_owned;
   const auto cell_nodes = mesh.cell_nodes;
   const auto x_n = mesh.x_n;
@@ -464,7 +465,8 @@ static StepLimit stepLimitOverCellGeometries(const char* label, const Mesh& mesh
 // The same for the staged form: `cell(nodes, best)` gets the cell's nodes
 // (NodesOfCell).
 template <class CellUpdate>
-static StepLimit stepLimitOverCellNodes(const char* label, const Mesh& mesh, const CellUpdate& cell) {
+static StepLimit stepLimitOverCellNodes(const char* label, const Mesh& mesh,
+                                        const CellUpdate& cell) {
   const auto owned = mesh.cell_owned;
   const auto cell_nodes = mesh.cell_nodes;
   const auto x_n = mesh.x_n;
@@ -502,8 +504,8 @@ static inline void shareVolumeChanges(const Mesh& mesh, const State& state) {
 // Returns the smallest time-step candidate (or a negative value and the
 // failure code for an invalid cell).
 static inline StepLimit computeGeometry(const Mesh& mesh, const State& state,
-                                 const TimeStepControls& controls,
-                                 KernelForm form = defaultKernelForm()) {
+                                        const TimeStepControls& controls,
+                                        KernelForm form = defaultKernelForm()) {
   const auto s = state;
   if constexpr (kFusedKernelsBuilt) {
     if (form == KernelForm::Fused) {

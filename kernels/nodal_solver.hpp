@@ -858,8 +858,9 @@ inline MatRealView allocateCornerRows(const Mesh& mesh) {
 // cell by cell, docs/method.md §7.1).
 // `rows`: the staged form's per-cell rows (allocateCornerRows, KernelForm::
 // Staged); without them the fused form runs (built on CPU backends only).
-static inline void computeCornerTerms(const Mesh& mesh, const State& state, const CornerControls& controls,
-                               const MatRealView& rows = {}) {
+static inline void computeCornerTerms(const Mesh& mesh, const State& state,
+                                      const CornerControls& controls,
+                                      const MatRealView& rows = {}) {
   const detail::CornerTerms terms = detail::cornerTerms(mesh, state, controls);
   if (terms.atomics) {
     Kokkos::deep_copy(state.M_n, 0.0);
@@ -975,7 +976,7 @@ KOKKOS_FORCEINLINE_FUNCTION void prefetchCornerRecords(const State& s, const Ord
 
 // Solves every node and finds where it moves: x_n_next = x_n0 + dt_stage V_n.
 static inline void nodalSolve(const Mesh& mesh, const State& state, const CornerControls& controls,
-                       double dt_stage) {
+                              double dt_stage) {
   // The Views it reads, not the whole Mesh (whose global ids live on the host).
   const auto cell_face_side = mesh.cell_face_side;
   const auto cell_nodes = mesh.cell_nodes;
@@ -1433,7 +1434,8 @@ KOKKOS_INLINE_FUNCTION void updateCell(const CellNodesView& cell_nodes, const Ve
 // One part of every cell's materials' update (the staged form), from the
 // cell's stored E and V.
 template <int kParts>
-static void updateMaterialParts(const char* label, const Mesh& mesh, const State& state, double dt_stage) {
+static void updateMaterialParts(const char* label, const Mesh& mesh, const State& state,
+                                double dt_stage) {
   const auto cell_nodes = mesh.cell_nodes;
   const auto x_n = mesh.x_n;
   const auto s = state;
@@ -1450,7 +1452,7 @@ static void updateMaterialParts(const char* label, const Mesh& mesh, const State
 // materials as two kernels (the materials' e_new = E - |V|^2/2 from the
 // stored E and V: the same bits).
 static inline void updateCells(const Mesh& mesh, const State& state, double dt_stage,
-                        KernelForm form = defaultKernelForm()) {
+                               KernelForm form = defaultKernelForm()) {
   const auto cell_nodes = mesh.cell_nodes;
   const auto x_n = mesh.x_n;
   const auto s = state;
@@ -1489,10 +1491,10 @@ static inline void updateCells(const Mesh& mesh, const State& state, double dt_s
 // `what`: see StageEnd.
 // The staged form (KernelForm) runs the cell update and the geometry as two
 // kernels.
-static inline StepLimit updateCellsAndGeometry(const Mesh& mesh, const State& state, double dt_stage,
-                                        const TimeStepControls& controls,
-                                        StageEnd what = StageEnd::Full,
-                                        KernelForm form = defaultKernelForm()) {
+static inline StepLimit updateCellsAndGeometry(const Mesh& mesh, const State& state,
+                                               double dt_stage, const TimeStepControls& controls,
+                                               StageEnd what = StageEnd::Full,
+                                               KernelForm form = defaultKernelForm()) {
   const auto cell_nodes = mesh.cell_nodes;
   const auto x_n = mesh.x_n;
   const auto s = state;

@@ -146,7 +146,7 @@ using RemapBoundaryFlux = SumArray<5>;
 // (alpha rho)^k, V = rho V / rho and T^k = (alpha T)^k / alpha^k; zero where
 // the cell does not have it (RemapLayout::hasPrimitive).
 static inline void remapDensities(const State& state, const RemapLayout& layout,
-                           const RemapFields& fields) {
+                                  const RemapFields& fields) {
   const auto s = state;
   const auto q = fields.density;
   const auto w = fields.primitive;
@@ -375,7 +375,7 @@ KOKKOS_FORCEINLINE_FUNCTION void cellGradients(const CellNodesView& cell_nodes,
 // and each material's interface normal -grad alpha^k / |grad alpha^k|
 // (State::n_ck, for the stress relaxation of mixed cells, geometry.hpp).
 static inline void remapGradients(const Mesh& mesh, const State& state, const RemapLayout& layout,
-                           const RemapControls& controls, const RemapFields& fields) {
+                                  const RemapControls& controls, const RemapFields& fields) {
   const auto cell_nodes = mesh.cell_nodes;
   const auto neighbors = mesh.cell_neighbors;
   const auto x_n = mesh.x_n;
@@ -757,8 +757,9 @@ KOKKOS_FORCEINLINE_FUNCTION void remapCell(const State& s, const CellFacesView& 
 // the initial mesh, clean-up and kinetic-energy fix (docs/method.md §A9-A11). Returns what
 // crossed the outer boundary.
 static inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state,
-                                     const RemapLayout& layout, const RemapControls& controls,
-                                     const RemapFields& fields, const SweptFaces& swept) {
+                                            const RemapLayout& layout,
+                                            const RemapControls& controls,
+                                            const RemapFields& fields, const SweptFaces& swept) {
   const auto neighbors = mesh.cell_neighbors;
   const auto owned = mesh.cell_owned;
   const auto s = state;

@@ -368,9 +368,9 @@ KOKKOS_FORCEINLINE_FUNCTION void cellSweptFaces(const CellNodesView& cell_nodes,
 // Swept volumes and first moments of every face, by side, moving from the
 // Lagrangian node positions x_lag to the remap target x_target (the initial
 // mesh), docs/method.md §A9. `form`: see KernelForm (the same bits).
-static inline void computeSweptFaces(const Mesh& mesh, const Vec3View& x_lag, const Vec3View& x_target,
-                              const SweptFaces& swept_faces,
-                              KernelForm form = defaultKernelForm()) {
+static inline void computeSweptFaces(const Mesh& mesh, const Vec3View& x_lag,
+                                     const Vec3View& x_target, const SweptFaces& swept_faces,
+                                     KernelForm form = defaultKernelForm()) {
   const auto cell_nodes = mesh.cell_nodes;
   const auto cell_neighbors = mesh.cell_neighbors;
   const auto cell_neighbor_face = mesh.cell_neighbor_face;
