@@ -19,6 +19,11 @@ enum class EosKind : int { IdealGas = 0, MieGruneisen = 1, NeoHookean = 2, Stiff
 // Jaumann rate + radial return, NeoHookean = hyper-elastic from B.
 enum class StrengthKind : int { None = 0, HypoElastic = 1, NeoHookean = 2 };
 
+// The yield stress of a hypo-elastic solid (docs/method.md §A7): Perfect, Y = Y0;
+// Linear isotropic hardening, Y = Y0 + H eps_p; JohnsonCook,
+// Y = (Y0 + B eps_p^n)(1 + C ln(max(rate / rate0, 1)))(1 - T*^m).
+enum class HardeningKind : int { Perfect = 0, Linear = 1, JohnsonCook = 2 };
+
 // `eos` and `gamma` stay first so `MaterialParams{EosKind::IdealGas, gamma}`
 // keeps working; every other field defaults to "absent".
 struct MaterialParams {
@@ -33,7 +38,14 @@ struct MaterialParams {
   // Strength.
   StrengthKind strength = StrengthKind::None;
   double mu = 0.0;            // shear modulus, hypo-elastic (use shearModulus())
-  double yield_stress = 0.0;  // Y0, von Mises, perfect plasticity
+  double yield_stress = 0.0;  // Y0 (Johnson-Cook's A), von Mises
+  HardeningKind hardening = HardeningKind::Perfect;
+  double hardening_modulus = 0.0;  // H, linear hardening
+  // Johnson-Cook: B, n, C, the reference rate rate0 [1/s] and the thermal
+  // exponent m; the temperature is T = T_room + e / c_v (specific_heat c_v; 0:
+  // no thermal softening), T* = (T - T_room) / (T_melt - T_room) in [0, 1].
+  double jc_B = 0.0, jc_n = 1.0, jc_C = 0.0, jc_rate0 = 1.0, jc_m = 1.0;
+  double room_temperature = 293.0, melt_temperature = 0.0, specific_heat = 0.0;
   double young = 0.0;         // E, Neo-Hookean
   double poisson = 0.0;       // nu, Neo-Hookean
 };

@@ -49,6 +49,9 @@ struct State {
   MatRealView p_ck;      // pressure (derived at every stage)
   MatSym6View S_ck;      // deviator: evolved (hypo-elastic) or from B (Neo-Hookean)
   MatSym6View B_ck;      // left Cauchy-Green tensor (only in runs with a Neo-Hookean material)
+  // Equivalent plastic strain of the hypo-elastic solids (0 elsewhere; only
+  // in runs with one): their yield stress may harden with it.
+  MatRealView eps_ck;
   // Compressibility weight alpha^k / (rho^k a_k^2) (derived): a mixed cell's
   // volume change is shared among its materials in proportion to it.
   MatRealView w_ck;
@@ -75,6 +78,7 @@ struct State {
   MatRealView p_ck0;
   RealView vol_c0;
   MatSym6View S_ck0, B_ck0;
+  MatRealView eps_ck0;
 
   // Corner arrays, corner id = 8 c + local node.
   Vec3View A_cp;  // corner vector sum_f s_pf n_pf = d v_c / d x_p

@@ -66,6 +66,105 @@ KOKKOS_INLINE_FUNCTION ReturnMapResult radialReturn(const SymMat3& S_trial, doub
   return {S_trial, false};
 }
 
+// Strain-hardening plasticity (docs/method.md §A7). The equivalent plastic
+// strain eps_p grows by the plastic multiplier of the radial return,
+//   q_trial - 3 mu d_eps = Y(eps_p0 + d_eps, d_eps / dt, T*),   q = sqrt(3/2) |S|,
+// and the deviator is scaled back to the surface, S = (q_trial - 3 mu d_eps) /
+// q_trial S_trial: exact for linear hardening, the root of a monotone
+// function (safeguarded Newton) for Johnson-Cook.
+
+// The homologous temperature T* = (T - T_room) / (T_melt - T_room) in [0, 1]
+// of a material at specific internal energy e (above its reference state):
+// T = T_room + e / c_v, every joule of plastic work heating it (the energy
+// equation carries it, so the Taylor-Quinney share is 1). 0 without a
+// specific heat or a melting point above the room temperature.
+KOKKOS_INLINE_FUNCTION double homologousTemperature(const MaterialParams& m, double e) {
+  const double melt_span = m.melt_temperature - m.room_temperature;
+  if (!(m.specific_heat > 0.0 && melt_span > 0.0)) return 0.0;
+  const double t_star = e / (m.specific_heat * melt_span);
+  return t_star < 0.0 ? 0.0 : (t_star > 1.0 ? 1.0 : t_star);
+}
+
+// The yield stress of material m and its derivative along the plastic
+// increment d_eps of a stage of length dt: Y(eps_p0 + d_eps, d_eps / dt, T*).
+struct YieldPoint {
+  double stress, slope;  // Y and dY / d(d_eps)
+};
+KOKKOS_INLINE_FUNCTION YieldPoint yieldPoint(const MaterialParams& m, double eps_p0, double d_eps,
+                                             double dt, double t_star) {
+  const double eps = eps_p0 + d_eps;
+  if (m.hardening == HardeningKind::Linear) {
+    return {m.yield_stress + m.hardening_modulus * eps, m.hardening_modulus};
+  }
+  if (m.hardening == HardeningKind::Perfect) return {m.yield_stress, 0.0};
+  // Johnson-Cook: strain, rate and thermal factors
+  const double power = eps > 0.0 ? math::pow(eps, m.jc_n) : 0.0;
+  const double strain_factor = m.yield_stress + m.jc_B * power;
+  const double strain_slope = eps > 0.0 ? m.jc_B * m.jc_n * power / eps : 0.0;
+  const double rate_ratio = d_eps / (dt * m.jc_rate0);
+  const bool rate_hardens = rate_ratio > 1.0;
+  const double rate_factor = rate_hardens ? 1.0 + m.jc_C * math::log(rate_ratio) : 1.0;
+  const double rate_slope = rate_hardens ? m.jc_C / d_eps : 0.0;
+  const double thermal_factor = t_star > 0.0 ? 1.0 - math::pow(t_star, m.jc_m) : 1.0;
+  return {strain_factor * rate_factor * thermal_factor,
+          (strain_slope * rate_factor + strain_factor * rate_slope) * thermal_factor};
+}
+
+struct PlasticUpdate {
+  SymMat3 S;
+  double eps_p;
+  bool yielded;
+};
+
+// The plastic increment of a trial state of equivalent stress q_trial above
+// the yield stress (the root of q_trial - 3 mu d - Y(d) on [0, q_trial / 3
+// mu], which the function crosses once: it falls with d). Linear hardening in
+// closed form; Johnson-Cook by Newton's method kept inside the bracket (a
+// step that leaves it bisects: eps^n with n < 1 has an infinite slope at 0,
+// the rate factor a kink at rate0), to a residual of 1e-12 q_trial.
+KOKKOS_INLINE_FUNCTION double plasticIncrement(const MaterialParams& m, double q_trial,
+                                               double eps_p0, double dt, double t_star) {
+  const double three_mu = 3.0 * m.mu;
+  if (m.hardening != HardeningKind::JohnsonCook) {
+    const YieldPoint start = yieldPoint(m, eps_p0, 0.0, dt, t_star);
+    return (q_trial - start.stress) / (three_mu + start.slope);
+  }
+  double lo = 0.0, hi = q_trial / three_mu;
+  double d = (q_trial - yieldPoint(m, eps_p0, 0.0, dt, t_star).stress) / three_mu;  // perfect
+  for (int iteration = 0; iteration < 100; ++iteration) {
+    const YieldPoint y = yieldPoint(m, eps_p0, d, dt, t_star);
+    const double residual = q_trial - three_mu * d - y.stress;
+    if (math::fabs(residual) <= 1e-12 * q_trial || hi - lo <= 1e-15 * hi) break;
+    if (residual > 0.0) {
+      lo = d;
+    } else {
+      hi = d;
+    }
+    const double newton = d + residual / (three_mu + y.slope);
+    d = newton > lo && newton < hi ? newton : 0.5 * (lo + hi);
+  }
+  return d;
+}
+
+// One stage's return of a trial deviator to the yield surface of material m
+// from the step-start plastic strain eps_p0, at homologous temperature
+// t_star. Perfect plasticity keeps radialReturn's arithmetic (the same bits
+// as before plastic strain was tracked) and adds its increment
+// (q_trial - Y0) / (3 mu).
+KOKKOS_INLINE_FUNCTION PlasticUpdate plasticReturn(const SymMat3& S_trial, const MaterialParams& m,
+                                                   double eps_p0, double dt, double t_star) {
+  const double q_trial = math::sqrt(1.5) * norm(S_trial);
+  if (m.hardening == HardeningKind::Perfect) {
+    const ReturnMapResult perfect = radialReturn(S_trial, m.yield_stress);
+    const double d_eps = perfect.yielded ? (q_trial - m.yield_stress) / (3.0 * m.mu) : 0.0;
+    return {perfect.S, eps_p0 + d_eps, perfect.yielded};
+  }
+  const double yield_now = yieldPoint(m, eps_p0, 0.0, dt, t_star).stress;
+  if (!(q_trial > yield_now)) return {S_trial, eps_p0, false};
+  const double d_eps = plasticIncrement(m, q_trial, eps_p0, dt, t_star);
+  return {((q_trial - 3.0 * m.mu * d_eps) / q_trial) * S_trial, eps_p0 + d_eps, true};
+}
+
 // Neo-Hookean deviator S = (mu/J) dev(Bbar), Bbar = det(B)^{-1/3} B (docs/method.md §A7).
 // The isochoric scaling uses det(B) rather than J^2 = (rho0/rho)^2: B and the
 // density are advanced by different discretisations, and normalising B by its

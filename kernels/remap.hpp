@@ -43,7 +43,7 @@
 
 namespace lagremap {
 
-constexpr int kMaxRemapVariables = 3 * kMaxMaterials + 4 + 6 * kMaxMaterials;
+constexpr int kMaxRemapVariables = 3 * kMaxMaterials + 4 + 7 * kMaxMaterials;
 
 // Columns of the per-cell tables of remapped quantities.
 struct RemapLayout {
@@ -52,6 +52,11 @@ struct RemapLayout {
   // First of the 6 tensor columns of material k (alpha^k S^k for a
   // hypo-elastic material, alpha^k B^k for a Neo-Hookean one), -1 for a fluid.
   Kokkos::Array<int, kMaxMaterials> tensor_column;
+  // The column of material k's plastic strain, (alpha rho eps_p)^k (a
+  // hypo-elastic material), -1 for the others; they are the last columns,
+  // from plastic_begin on (n_variables when there are none).
+  Kokkos::Array<int, kMaxMaterials> plastic_column;
+  int plastic_begin = 0;
 
   KOKKOS_INLINE_FUNCTION int alpha(int k) const { return k; }
   KOKKOS_INLINE_FUNCTION int mass(int k) const { return n_materials + k; }
@@ -60,8 +65,8 @@ struct RemapLayout {
   KOKKOS_INLINE_FUNCTION int kinetic() const { return 3 * n_materials + 3; }
   // Columns with a reconstructed gradient. The gradient is that of the
   // primitive variable of the column (remapDensities): alpha^k, rho^k, e^k,
-  // the velocity and the tensors S^k or B^k; the kinetic energy is not
-  // reconstructed (it rides on the momentum's parcels).
+  // the velocity, the tensors S^k or B^k and eps_p^k; the kinetic energy is
+  // not reconstructed (it rides on the momentum's parcels).
   KOKKOS_INLINE_FUNCTION bool reconstructed(int v) const { return v != kinetic(); }
 
   // Material of column v: k for the columns of material k but its volume
@@ -76,7 +81,8 @@ struct RemapLayout {
     const int k = column_material[v];
     if (k < 0) return true;
     const bool has_volume = q(c, alpha(k)) > 0.0;
-    return v > kinetic() ? has_volume : has_volume && q(c, mass(k)) > 0.0;
+    const bool per_volume = v > kinetic() && v < plastic_begin;  // a tensor's column
+    return per_volume ? has_volume : has_volume && q(c, mass(k)) > 0.0;
   }
 };
 
@@ -179,6 +185,11 @@ static inline void remapDensities(const State& state, const RemapLayout& layout,
             // (alpha T) / alpha: the primitive the tensor integral was always divided back to
             w(c, column + i) = alpha > 0.0 ? (alpha * t[i]) / alpha : 0.0;
           }
+          const int plastic = layout.plastic_column[k];
+          if (plastic < 0) continue;
+          const double plastic_density = alpha > 0.0 ? mass_density * s.eps_ck(c, k) : 0.0;
+          q(c, plastic) = plastic_density;
+          w(c, plastic) = has_mass ? plastic_density / mass_density : 0.0;
         }
         const double mass = s.m_c(c);
         const Vec3 v = loadVec3(s.v_c, c);
@@ -501,18 +512,18 @@ KOKKOS_FORCEINLINE_FUNCTION Vec3 limitedLever(const Vec3& lever, double reach_up
   return lever_norm > lever_max ? (lever_max / lever_norm) * lever : lever;
 }
 
-// A parcel's specific energy stays inside the range of the two cells sharing
-// the face (a positivity guard: within the reach the linear extrapolation may
-// still pass the face, which a material at 1 J/kg beside one at 1e6 J/kg
-// cannot afford). `other`: the downwind cell.
-KOKKOS_FORCEINLINE_FUNCTION double boundedEnergyFlux(const RemapLayout& layout,
-                                                     const RemapFields& fields, Index other, int m,
-                                                     double mass_flux, double e_up,
-                                                     double energy_flux) {
+// A parcel's specific energy (or plastic strain: `column`) stays inside the
+// range of the two cells sharing the face (a positivity guard: within the
+// reach the linear extrapolation may still pass the face, which a material
+// at 1 J/kg beside one at 1e6 J/kg cannot afford). `other`: the downwind cell.
+KOKKOS_FORCEINLINE_FUNCTION double boundedSpecificFlux(const RemapLayout& layout,
+                                                       const RemapFields& fields, Index other,
+                                                       int m, int column, double mass_flux,
+                                                       double e_up, double energy_flux) {
   double e_lo_face = e_up, e_hi_face = e_up;
   const double mass_other = fields.density(other, layout.mass(m));
   if (fields.density(other, layout.alpha(m)) > 0.0 && mass_other > 0.0) {
-    const double e_other = fields.primitive(other, layout.energy(m));
+    const double e_other = fields.primitive(other, column);
     e_lo_face = e_other < e_lo_face ? e_other : e_lo_face;
     e_hi_face = e_other > e_hi_face ? e_other : e_hi_face;
   }
@@ -560,11 +571,21 @@ KOKKOS_FORCEINLINE_FUNCTION void fluxInteriorRegion(const RemapLayout& layout,
     integral[layout.mass(m)] += mass_flux;
     double energy_flux = mass_flux * e_up + (pure_up ? mass_up * slope(layout.energy(m)) : 0.0);
     if (limit) {
-      energy_flux =
-          boundedEnergyFlux(layout, fields, up == c ? nb : c, m, mass_flux, e_up, energy_flux);
+      energy_flux = boundedSpecificFlux(layout, fields, up == c ? nb : c, m, layout.energy(m),
+                                        mass_flux, e_up, energy_flux);
     }
     integral[layout.energy(m)] += energy_flux;
     mass_flux_total += mass_flux;
+    const int plastic = layout.plastic_column[m];
+    if (plastic >= 0) {  // eps_p rides on the mass flux as e^k does
+      const double eps_up = w(up, plastic);
+      double plastic_flux = mass_flux * eps_up + (pure_up ? mass_up * slope(plastic) : 0.0);
+      if (limit) {
+        plastic_flux = boundedSpecificFlux(layout, fields, up == c ? nb : c, m, plastic,
+                                           mass_flux, eps_up, plastic_flux);
+      }
+      integral[plastic] += plastic_flux;
+    }
     const int column = layout.tensor_column[m];
     if (column < 0) continue;
     for (int i = 0; i < 6; ++i) {
@@ -698,6 +719,12 @@ KOKKOS_FORCEINLINE_FUNCTION void storeRemappedCell(const State& s, const RemapLa
     const SymMat3 tensor =
         hyper && !present ? identitySym() : SymMat3{t[0], t[1], t[2], t[3], t[4], t[5]};
     storeSym(hyper ? s.B_ck : s.S_ck, c, k, tensor);
+    // eps_p^k over the remapped mass, at least 0 (a trace that joins the
+    // main material brings it its mass, not its strain)
+    const int plastic = layout.plastic_column[k];
+    if (plastic < 0) continue;
+    const double eps = present && mass[k] > 0.0 ? integral[plastic] / mass[k] : 0.0;
+    s.eps_ck(c, k) = eps > 0.0 ? eps : 0.0;
   }
 }
 

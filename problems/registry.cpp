@@ -100,7 +100,68 @@ void declareHypoSolidKeys(Config& config, const std::string& prefix, const std::
   config.addReal(prefix + ".Gamma0", m.Gamma0, "-", "Gruneisen coefficient Gamma0");
   config.addReal(prefix + ".s", m.s, "-", "Hugoniot slope s (Us = a0 + s up)");
   config.addReal(prefix + ".mu", m.mu, "Pa", "shear modulus (hypo-elastic)");
-  config.addReal(prefix + ".yield_stress", m.yield_stress, "Pa", "von Mises yield stress Y0");
+  config.addReal(prefix + ".yield_stress", m.yield_stress, "Pa",
+                 "von Mises yield stress Y0 (Johnson-Cook's A)");
+  declareHardeningKeys(config, prefix, m);
+}
+
+void declareHardeningKeys(Config& config, const std::string& prefix, const MaterialParams& m) {
+  config.addChoice(prefix + ".hardening", hardeningName(m.hardening),
+                   {"perfect", "linear", "johnson_cook"},
+                   "yield stress: perfect (Y0), linear (Y0 + H eps_p), johnson_cook");
+  config.addReal(prefix + ".hardening_modulus", m.hardening_modulus, "Pa",
+                 "H of linear hardening, Y = Y0 + H eps_p");
+  config.addReal(prefix + ".jc_B", m.jc_B, "Pa", "Johnson-Cook B (strain term B eps_p^n)");
+  config.addReal(prefix + ".jc_n", m.jc_n, "-", "Johnson-Cook strain exponent n");
+  config.addReal(prefix + ".jc_C", m.jc_C, "-", "Johnson-Cook rate coefficient C");
+  config.addReal(prefix + ".jc_rate0", m.jc_rate0, "1/s", "Johnson-Cook reference strain rate");
+  config.addReal(prefix + ".jc_m", m.jc_m, "-", "Johnson-Cook thermal exponent m");
+  config.addReal(prefix + ".room_temperature", m.room_temperature, "K",
+                 "temperature at e = 0 (Johnson-Cook T_room)");
+  config.addReal(prefix + ".melt_temperature", m.melt_temperature, "K",
+                 "Johnson-Cook melting temperature T_melt");
+  config.addReal(prefix + ".specific_heat", m.specific_heat, "J/(kg K)",
+                 "c_v of T = T_room + e / c_v (0: no thermal softening)");
+}
+
+void readHardening(const Config& config, const std::string& prefix, MaterialParams& m) {
+  const std::string kind = config.text(prefix + ".hardening");
+  m.hardening = kind == "linear"         ? HardeningKind::Linear
+                : kind == "johnson_cook" ? HardeningKind::JohnsonCook
+                                         : HardeningKind::Perfect;
+  m.hardening_modulus = config.real(prefix + ".hardening_modulus");
+  m.jc_B = config.real(prefix + ".jc_B");
+  m.jc_n = config.real(prefix + ".jc_n");
+  m.jc_C = config.real(prefix + ".jc_C");
+  m.jc_rate0 = config.real(prefix + ".jc_rate0");
+  m.jc_m = config.real(prefix + ".jc_m");
+  m.room_temperature = config.real(prefix + ".room_temperature");
+  m.melt_temperature = config.real(prefix + ".melt_temperature");
+  m.specific_heat = config.real(prefix + ".specific_heat");
+  if (!(m.hardening_modulus >= 0)) throw ConfigError(prefix + ".hardening_modulus must be >= 0");
+  if (!(m.jc_B >= 0 && m.jc_n > 0 && m.jc_C >= 0 && m.jc_rate0 > 0 && m.jc_m > 0)) {
+    throw ConfigError(prefix + ": need jc_B >= 0, jc_n > 0, jc_C >= 0, jc_rate0 > 0, jc_m > 0");
+  }
+  if (!(m.specific_heat >= 0 && m.room_temperature >= 0 && m.melt_temperature >= 0)) {
+    throw ConfigError(prefix + ": specific_heat, room_temperature, melt_temperature must be >= 0");
+  }
+  if (m.hardening == HardeningKind::JohnsonCook && m.specific_heat > 0 &&
+      !(m.melt_temperature > m.room_temperature)) {
+    throw ConfigError(prefix + ".melt_temperature must exceed room_temperature" +
+                      " (or specific_heat = 0: no thermal softening)");
+  }
+}
+
+const char* hardeningName(HardeningKind kind) {
+  switch (kind) {
+    case HardeningKind::Linear:
+      return "linear";
+    case HardeningKind::JohnsonCook:
+      return "johnson_cook";
+    case HardeningKind::Perfect:
+      break;
+  }
+  return "perfect";
 }
 
 MaterialParams readHypoSolid(const Config& config, const std::string& prefix,
@@ -112,6 +173,7 @@ MaterialParams readHypoSolid(const Config& config, const std::string& prefix,
   m.s = config.real(prefix + ".s");
   m.mu = config.real(prefix + ".mu");
   m.yield_stress = config.real(prefix + ".yield_stress");
+  readHardening(config, prefix, m);
   // (Gamma0 > 0, not >= 0: the problems set a solid's initial energy from its
   // pressure at rho0, e0 = p0 / (rho0 Gamma0))
   if (!(m.rho0 > 0 && m.a0 > 0 && m.Gamma0 > 0 && m.s >= 0 && m.mu >= 0 && m.yield_stress >= 0)) {

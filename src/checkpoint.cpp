@@ -117,6 +117,7 @@ constexpr ValueRule kValueRules[] = {
     {"m_ck", [](double m) { return m >= 0.0; }, "material masses must not be negative"},
     {"alpha_ck", [](double a) { return a >= 0.0 && a <= 1.0; },
      "volume fractions must lie in [0, 1]"},
+    {"eps_ck", [](double eps) { return eps >= 0.0; }, "plastic strains must not be negative"},
 };
 
 // Reads this rank's rows (ghosts included) of the checkpoint's fields. Each

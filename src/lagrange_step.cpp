@@ -124,7 +124,7 @@ void LagrangeStep::saveStartOfStep() {
     Kokkos::deep_copy(state_.vol_c0, state_.vol_c);
   }
   if (state_.has_solids) {  // fluids-only runs have no deviator or B to carry
-    copySolidDeviators(state_.S_ck0, state_.S_ck, solid_materials_);
+    copySolidDeviators(state_.S_ck0, state_.S_ck, state_.eps_ck0, state_.eps_ck, solid_materials_);
     if (state_.has_neo_hookean) Kokkos::deep_copy(state_.B_ck0, state_.B_ck);
   }
 }
@@ -136,7 +136,7 @@ void LagrangeStep::restoreStartOfStep() {
   Kokkos::deep_copy(state_.e_ck, state_.e_ck0);
   if (state_.n_materials > 1) Kokkos::deep_copy(state_.alpha_ck, state_.alpha_ck0);
   if (state_.has_solids) {
-    copySolidDeviators(state_.S_ck, state_.S_ck0, solid_materials_);
+    copySolidDeviators(state_.S_ck, state_.S_ck0, state_.eps_ck, state_.eps_ck0, solid_materials_);
     if (state_.has_neo_hookean) Kokkos::deep_copy(state_.B_ck, state_.B_ck0);
   }
   computeGeometry();

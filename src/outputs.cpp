@@ -46,6 +46,7 @@ FinalFields copyFields(const Mesh& mesh, bool global, const State& state, double
   fields.m_k = cells(state.m_ck);
   fields.e_k = cells(state.e_ck);
   fields.p_k = cells(state.p_ck);
+  if (state.eps_ck.extent(0) > 0) fields.eps_k = cells(state.eps_ck);
   return fields;
 }
 
@@ -87,6 +88,10 @@ void writeSnapshot(io::SnapshotSeries& series, const FinalFields& fields, const 
       ownedCellField("volume", 1, [&](Index c, int) { return fields.vol(c); }),
       ownedCellField("velocity", 3, [&](Index c, int d) { return fields.v(c, d); }),
       ownedCellField("deviatoric_stress", 6, [&](Index c, int k) { return fields.S(c, k); })};
+  if (fields.eps_k.extent(0) > 0) {
+    cell_fields.push_back(ownedCellField(
+        "plastic_strain", 1, [&fields](Index c, int) { return fields.plasticStrain(c); }));
+  }
   // Multi-material problems: each material's volume fraction, density
   // m^k / (alpha^k v), specific internal energy and pressure (0 where absent).
   const int n_materials = int(fields.alpha.extent(1));

@@ -108,6 +108,18 @@ struct FinalFields {
   Sym6View::HostMirror S;                 // deviatoric stress (mixture)
   MatRealView::HostMirror alpha;          // volume fraction of each material
   MatRealView::HostMirror m_k, e_k, p_k;  // mass, specific internal energy, pressure per material
+  MatRealView::HostMirror eps_k;  // plastic strain per material (empty: no hypo-elastic solid)
+  // The plastic strain of cell c: its materials' eps_p^k by mass (a fluid's
+  // is 0; a light gas beside a metal barely dilutes the metal's).
+  double plasticStrain(Index c) const {
+    double strained = 0.0, mass = 0.0;
+    for (Index k = 0; k < Index(eps_k.extent(1)); ++k) {
+      if (!(alpha(c, k) > 0.0)) continue;
+      strained += m_k(c, k) * eps_k(c, k);
+      mass += m_k(c, k);
+    }
+    return mass > 0.0 ? strained / mass : 0.0;
+  }
   // The problem's probe after every step: (t, value), first entry at t = 0.
   std::vector<std::pair<double, double>> probe;
 };
@@ -153,11 +165,16 @@ struct AmbientGas {
 AmbientGas readAmbientGas(const Config& config, const std::string& problem);
 void declareMeshKeys(Config& config, int nx, int ny, int nz);
 void declareBoundaryKeys(Config& config, const std::array<const char*, kNumSides>& defaults);
-// <prefix>.rho0, a0, Gamma0, s, mu, yield_stress: a Mie-Gruneisen,
-// hypo-elastic perfectly plastic solid, with the named preset's defaults.
+// <prefix>.rho0, a0, Gamma0, s, mu, yield_stress and the hardening keys: a
+// Mie-Gruneisen, hypo-elastic plastic solid, with the named preset's defaults.
 void declareHypoSolidKeys(Config& config, const std::string& prefix, const std::string& preset);
 MaterialParams readHypoSolid(const Config& config, const std::string& prefix,
                              const std::string& preset);
+// <prefix>.hardening (perfect, linear, johnson_cook) and its parameters
+// (docs/method.md §A7), with m's values as defaults; read into m.
+void declareHardeningKeys(Config& config, const std::string& prefix, const MaterialParams& m);
+void readHardening(const Config& config, const std::string& prefix, MaterialParams& m);
+const char* hardeningName(HardeningKind kind);
 // <prefix>.rho0, young, poisson: a Neo-Hookean hyper-elastic solid.
 void declareNeoHookeanKeys(Config& config, const std::string& prefix, const std::string& preset);
 MaterialParams readNeoHookean(const Config& config, const std::string& prefix,

@@ -26,6 +26,14 @@ RemapLayout makeRemapLayout(const State& state) {
     for (int i = 0; i < 6; ++i) layout.column_material[column + i] = k;
     column += 6;
   }
+  layout.plastic_begin = column;
+  for (int k = 0; k < kMaxMaterials; ++k) layout.plastic_column[k] = -1;
+  for (int k = 0; k < state.n_materials; ++k) {
+    if (materials(k).strength != StrengthKind::HypoElastic) continue;
+    layout.plastic_column[k] = column;
+    layout.column_material[column] = k;
+    ++column;
+  }
   layout.n_variables = column;
   return layout;
 }

@@ -61,7 +61,7 @@ void carveCornerArrays(State& s, Index n_cells, WorkArena& arena) {
 }
 
 void allocateMaterialState(State& s, Index n_cells, int n_materials, bool has_solids,
-                           bool has_neo_hookean) {
+                           bool has_neo_hookean, bool has_hypo_elastic) {
   auto scalars = [&](const char* name) {
     return MatRealView(std::string("lagremap::state::") + name, n_cells, n_materials);
   };
@@ -87,6 +87,9 @@ void allocateMaterialState(State& s, Index n_cells, int n_materials, bool has_so
   const Index left_cauchy_green_cells = has_neo_hookean ? n_cells : 0;
   s.B_ck = tensors("B_ck", left_cauchy_green_cells);
   s.B_ck0 = tensors("B_ck0", left_cauchy_green_cells);
+  const Index plastic_cells = has_hypo_elastic ? n_cells : 0;
+  s.eps_ck = MatRealView("lagremap::state::eps_ck", plastic_cells, n_materials);
+  s.eps_ck0 = MatRealView("lagremap::state::eps_ck0", plastic_cells, n_materials);
   s.n_ck = MatVec3View("lagremap::state::n_ck", has_solids && n_materials > 1 ? n_cells : 0,
                        n_materials);
 }
@@ -103,7 +106,10 @@ void addIfAllocated(std::vector<FieldRef>& list, const std::string& name, const 
 // state does not say (State::has_hypo_elastic, has_neo_hookean).
 void addEvolvedTensors(std::vector<FieldRef>& list, const State& s) {
   const bool known = s.has_hypo_elastic || s.has_neo_hookean;
-  if (s.has_hypo_elastic || !known) addIfAllocated(list, "S_ck", s.S_ck);
+  if (s.has_hypo_elastic || !known) {
+    addIfAllocated(list, "S_ck", s.S_ck);
+    addIfAllocated(list, "eps_ck", s.eps_ck);
+  }
   if (s.has_neo_hookean || !known) addIfAllocated(list, "B_ck", s.B_ck);
 }
 
@@ -120,6 +126,7 @@ void addEvolvedFields(std::vector<FieldRef>& list, const State& s, bool every_te
   if (every_tensor) {
     addIfAllocated(list, "S_ck", s.S_ck);
     addIfAllocated(list, "B_ck", s.B_ck);
+    addIfAllocated(list, "eps_ck", s.eps_ck);
   } else {
     addEvolvedTensors(list, s);
   }
@@ -177,14 +184,17 @@ std::vector<FieldRef> remappedCellFields(const State& s) {
   return list;
 }
 
-void copySolidDeviators(const MatSym6View& to, const MatSym6View& from, unsigned solids) {
+void copySolidDeviators(const MatSym6View& to, const MatSym6View& from,
+                        const MatRealView& eps_to, const MatRealView& eps_from, unsigned solids) {
   const int n_materials = int(to.extent(1));
+  const bool plastic = eps_to.extent(0) > 0;
   Kokkos::parallel_for(
       "lagremap::lagrange::solid_deviators", Kokkos::RangePolicy<ExecSpace>(0, to.extent(0)),
       KOKKOS_LAMBDA(const Index c) {
         for (int k = 0; k < n_materials; ++k) {
           if ((solids >> k & 1u) == 0) continue;
           for (int i = 0; i < 6; ++i) to(c, k, i) = from(c, k, i);
+          if (plastic) eps_to(c, k) = eps_from(c, k);
         }
       });
 }

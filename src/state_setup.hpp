@@ -19,13 +19,15 @@ void carveCornerArrays(State& state, Index n_cells, WorkArena& arena);
 // has_solids (a fluids-only run never touches them), the left Cauchy-Green
 // tensors B^k only when has_neo_hookean (only Neo-Hookean materials carry
 // them: 192 bytes a cell of two-material runs with a hypo-elastic solid).
+// The plastic strains eps_p^k only when has_hypo_elastic.
 void allocateMaterialState(State& state, Index n_cells, int n_materials, bool has_solids,
-                           bool has_neo_hookean);
+                           bool has_neo_hookean, bool has_hypo_elastic);
 
-// S^k of the materials in `solids` (bit k: material k has strength),
-// `from` -> `to` (the step-start copy and its restoring): a fluid's deviator
-// is zero throughout (nothing writes it), so half a two-material run's
-// tensor columns need no copy.
-void copySolidDeviators(const MatSym6View& to, const MatSym6View& from, unsigned solids);
+// S^k and eps_p^k (where the state has them) of the materials in `solids`
+// (bit k: material k has strength), `from` -> `to` (the step-start copy and
+// its restoring): a fluid's deviator and plastic strain are zero throughout
+// (nothing writes them), so half a two-material run's columns need no copy.
+void copySolidDeviators(const MatSym6View& to, const MatSym6View& from,
+                        const MatRealView& eps_to, const MatRealView& eps_from, unsigned solids);
 
 }  // namespace lagremap
