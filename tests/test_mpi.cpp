@@ -75,6 +75,7 @@ double maxRelativeDifference(const FinalFields& a, const FinalFields& b) {
   compare(a.m_k, b.m_k);
   compare(a.e_k, b.e_k);
   compare(a.p_k, b.p_k);
+  compare(a.eps_k, b.eps_k);
   compare(a.mesh.x_n, b.mesh.x_n);
   return worst;
 }
@@ -523,11 +524,23 @@ TEST(Checks, FromOwnedCellsAreTheSingleRankChecks) {
   }
 }
 
+// (a Johnson-Cook bar: its plastic strain, which its yield stress reads,
+// travels in the checkpoint)
 TEST(Restart, ContinuesBitForBitOnTheSameAndOnOneRank) {
   const std::string dir = sharedScratch("restart");
-  RunOptions options = testing::problemOptions("taylor", {"t_end=2e-4"}, 0.25, "remap");
+  RunOptions options = testing::problemOptions(
+      "taylor",
+      {"t_end=2e-4", "al.hardening=johnson_cook", "al.jc_B=2e8", "al.jc_n=0.3", "al.jc_C=0.02",
+       "al.specific_heat=900", "al.melt_temperature=930"},
+      0.25, "remap");
   const RunResult uninterrupted = runProblem(options);
   ASSERT_FALSE(uninterrupted.failed);
+  {
+    double largest = 0.0;  // (the bar has yielded: the strain matters)
+    for (std::size_t i = 0; i < uninterrupted.fields.eps_k.size(); ++i)
+      largest = std::max(largest, uninterrupted.fields.eps_k.data()[i]);
+    EXPECT_GT(largest, 0.01);
+  }
   // A run stopped half way (exit code 3's path) leaves its checkpoint.
   RunOptions stopped = options;
   stopped.config.set("numerics.max_steps", std::to_string(uninterrupted.steps / 2));
