@@ -73,6 +73,19 @@ void markDefaultCaseOnly(const Config& config, std::vector<Check>& checks,
   }
 }
 
+void markPerfectPlasticityOnly(const Config& config, std::vector<Check>& checks,
+                               const std::string& prefix, const std::vector<std::string>& names) {
+  const std::string hardening = config.text(prefix + ".hardening");
+  if (hardening == "perfect") return;
+  for (Check& check : checks) {
+    if (!names.empty() && std::find(names.begin(), names.end(), check.name) == names.end()) {
+      continue;
+    }
+    check.doesNotApply("the reference is for a perfectly plastic solid; this run has " + prefix +
+                       ".hardening = " + hardening);
+  }
+}
+
 void setModeIndependentReferences(const Config& config, std::vector<Check>& checks) {
   if (!config.remapMode()) return;
   for (Check& check : checks)

@@ -359,6 +359,12 @@ std::vector<Check> shellChecks(const Config& config, double inner_min, double ou
     checks[0].paper = kPaperInnerRadius;
     checks[1].paper = kPaperOuterRadius;
   }
+  // (Howell and Ball's energy balance is perfectly plastic: a user's radii
+  // are the user's)
+  std::vector<std::string> howell_ball = {"final_inward_speed"};
+  if (!(user_inner > 0.0)) howell_ball.push_back("stopping_inner_radius");
+  if (!(user_outer > 0.0)) howell_ball.push_back("stopping_outer_radius");
+  markPerfectPlasticityOnly(config, checks, "be", howell_ball);
   setModeIndependentReferences(config, checks);
   return checks;
 }

@@ -245,6 +245,7 @@ std::vector<Check> finishWilkins(const Config& config, const FinalFields& fields
   checks.push_back(
       {"plastic_density", plastic.rho, rho_p, tol * rho_p, "mean density behind " + wave});
   for (Check& check : checks) check.source = "exact two-wave solution";
+  markPerfectPlasticityOnly(config, checks, "al");
   setModeIndependentReferences(config, checks);
   return checks;
 }

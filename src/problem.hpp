@@ -60,6 +60,12 @@ struct Check {
 // (case: default)"; "" for the case itself. Resolution (mesh.*, --scale),
 // numerics.*, remap.* and check.* keys do not change the case.
 std::string differenceFromDefaultCase(const Config& config);
+// Marks each check in `names` (all when empty) as not applying where the
+// material <prefix> hardens (<prefix>.hardening is not perfect): their
+// references are solutions for perfect plasticity.
+void markPerfectPlasticityOnly(const Config& config, std::vector<Check>& checks,
+                               const std::string& prefix,
+                               const std::vector<std::string>& names = {});
 // Marks each check in `names` as not applying where the run is not the
 // default case (differenceFromDefaultCase), and sets their source.
 void markDefaultCaseOnly(const Config& config, std::vector<Check>& checks,
