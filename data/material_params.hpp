@@ -50,6 +50,15 @@ struct MaterialParams {
   double poisson = 0.0;       // nu, Neo-Hookean
 };
 
+// A solid whose yield stress reads its equivalent plastic strain, which the
+// state then carries (State::eps_ck): a hardening hypo-elastic one. (A
+// perfectly plastic solid's would be a diagnostic only; linear hardening with
+// H = 0 is perfect plasticity that carries it.)
+KOKKOS_INLINE_FUNCTION bool hasPlasticStrain(const MaterialParams& material) {
+  return material.strength == StrengthKind::HypoElastic &&
+         material.hardening != HardeningKind::Perfect;
+}
+
 // A fluid of the gas family (ideal or stiffened): its internal energy is
 // positive in every valid state, so the remap and the mixed-cell energy split
 // keep it so (docs/method.md §4.5, §5.6-5.7).

@@ -49,8 +49,8 @@ struct State {
   MatRealView p_ck;      // pressure (derived at every stage)
   MatSym6View S_ck;      // deviator: evolved (hypo-elastic) or from B (Neo-Hookean)
   MatSym6View B_ck;      // left Cauchy-Green tensor (only in runs with a Neo-Hookean material)
-  // Equivalent plastic strain of the hypo-elastic solids (0 elsewhere; only
-  // in runs with one): their yield stress may harden with it.
+  // Equivalent plastic strain of the hardening solids (hasPlasticStrain; 0
+  // elsewhere; only in runs with one): their yield stress grows with it.
   MatRealView eps_ck;
   // Compressibility weight alpha^k / (rho^k a_k^2) (derived): a mixed cell's
   // volume change is shared among its materials in proportion to it.

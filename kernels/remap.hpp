@@ -53,7 +53,7 @@ struct RemapLayout {
   // hypo-elastic material, alpha^k B^k for a Neo-Hookean one), -1 for a fluid.
   Kokkos::Array<int, kMaxMaterials> tensor_column;
   // The column of material k's plastic strain, (alpha rho eps_p)^k (a
-  // hypo-elastic material), -1 for the others; they are the last columns,
+  // hardening material, hasPlasticStrain), -1 for the others; the last columns,
   // from plastic_begin on (n_variables when there are none).
   Kokkos::Array<int, kMaxMaterials> plastic_column;
   int plastic_begin = 0;

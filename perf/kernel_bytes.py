@@ -9,7 +9,7 @@ carved Views (RemapStep's shared work memory) count like labelled ones.
 
   perf/kernel_bytes.py taylor|sedov [--bandwidth TB/s] [--cells N]
     taylor: `taylor --mode remap` (220 x 80 x 1 slab: 2 materials, one solid,
-            17 remapped columns, 2.03 nodes per cell)
+            16 remapped columns, 2.03 nodes per cell)
     sedov:  `sedov` in lagrange mode at N cells of a cube (1 material, no solid)
     --bandwidth: the GPU's memory bandwidth (default 4.3 TB/s, an H200's
                  reachable share of its 4.8 TB/s peak)
@@ -29,7 +29,7 @@ HERE = pathlib.Path(__file__).resolve().parent
 # A run: materials M, remapped columns V, corner-row columns R (the staged
 # corner kernels' per-cell rows), nodes per cell, whether it has solids.
 RUNS = {
-    "taylor": {"mode": "remap", "M": 2, "V": 17, "R": 47, "solids": True,
+    "taylor": {"mode": "remap", "M": 2, "V": 16, "R": 47, "solids": True,
                "nodes_per_cell": (221 * 81 * 2) / (220 * 80), "cells": 220 * 80},
     "sedov": {"mode": "lagrange", "M": 1, "V": 7, "R": 47, "solids": False,
               "nodes_per_cell": None, "cells": 30 ** 3},

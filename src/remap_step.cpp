@@ -29,7 +29,7 @@ RemapLayout makeRemapLayout(const State& state) {
   layout.plastic_begin = column;
   for (int k = 0; k < kMaxMaterials; ++k) layout.plastic_column[k] = -1;
   for (int k = 0; k < state.n_materials; ++k) {
-    if (materials(k).strength != StrengthKind::HypoElastic) continue;
+    if (!hasPlasticStrain(materials(k))) continue;
     layout.plastic_column[k] = column;
     layout.column_material[column] = k;
     ++column;

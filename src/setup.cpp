@@ -164,14 +164,14 @@ void initializeState(const ProblemSetup& setup, State& state) {
   if (n_materials < 1 || !sizes_ok) {
     throw std::logic_error("problem set-up gave initial data of the wrong size");
   }
-  bool has_solids = false, has_neo_hookean = false, has_hypo_elastic = false;
+  bool has_solids = false, has_neo_hookean = false, has_plastic_strain = false;
   for (const MaterialParams& material : setup.materials) {
     has_solids = has_solids || material.strength != StrengthKind::None;
     has_neo_hookean = has_neo_hookean || material.strength == StrengthKind::NeoHookean;
-    has_hypo_elastic = has_hypo_elastic || material.strength == StrengthKind::HypoElastic;
+    has_plastic_strain = has_plastic_strain || hasPlasticStrain(material);
   }
   allocateMaterialState(state, n_cells, n_materials, has_solids, has_neo_hookean,
-                        has_hypo_elastic);
+                        has_plastic_strain);
 
   std::vector<double> volume;
   std::vector<Vec3> centroid;

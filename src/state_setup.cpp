@@ -61,7 +61,7 @@ void carveCornerArrays(State& s, Index n_cells, WorkArena& arena) {
 }
 
 void allocateMaterialState(State& s, Index n_cells, int n_materials, bool has_solids,
-                           bool has_neo_hookean, bool has_hypo_elastic) {
+                           bool has_neo_hookean, bool has_plastic_strain) {
   auto scalars = [&](const char* name) {
     return MatRealView(std::string("lagremap::state::") + name, n_cells, n_materials);
   };
@@ -87,7 +87,7 @@ void allocateMaterialState(State& s, Index n_cells, int n_materials, bool has_so
   const Index left_cauchy_green_cells = has_neo_hookean ? n_cells : 0;
   s.B_ck = tensors("B_ck", left_cauchy_green_cells);
   s.B_ck0 = tensors("B_ck0", left_cauchy_green_cells);
-  const Index plastic_cells = has_hypo_elastic ? n_cells : 0;
+  const Index plastic_cells = has_plastic_strain ? n_cells : 0;
   s.eps_ck = MatRealView("lagremap::state::eps_ck", plastic_cells, n_materials);
   s.eps_ck0 = MatRealView("lagremap::state::eps_ck0", plastic_cells, n_materials);
   s.n_ck = MatVec3View("lagremap::state::n_ck", has_solids && n_materials > 1 ? n_cells : 0,

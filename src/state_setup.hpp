@@ -19,9 +19,10 @@ void carveCornerArrays(State& state, Index n_cells, WorkArena& arena);
 // has_solids (a fluids-only run never touches them), the left Cauchy-Green
 // tensors B^k only when has_neo_hookean (only Neo-Hookean materials carry
 // them: 192 bytes a cell of two-material runs with a hypo-elastic solid).
-// The plastic strains eps_p^k only when has_hypo_elastic.
+// The plastic strains eps_p^k only when has_plastic_strain (some material
+// hardens: hasPlasticStrain).
 void allocateMaterialState(State& state, Index n_cells, int n_materials, bool has_solids,
-                           bool has_neo_hookean, bool has_hypo_elastic);
+                           bool has_neo_hookean, bool has_plastic_strain);
 
 // S^k and eps_p^k (where the state has them) of the materials in `solids`
 // (bit k: material k has strength), `from` -> `to` (the step-start copy and

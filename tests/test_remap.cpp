@@ -47,6 +47,7 @@ struct TwoGasBox {
       heavy.strength = StrengthKind::HypoElastic;
       heavy.mu = 1.0;
       heavy.yield_stress = 1.0;
+      heavy.hardening = HardeningKind::Linear;  // (a hardening solid carries eps_p)
     }
     setup.materials = {light, heavy};
     const Index n = setup.mesh.n_cells;
