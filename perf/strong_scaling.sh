@@ -9,8 +9,11 @@
 #   perf/strong_scaling.sh [OUT_DIR] [-- LAGREMAP ARGS...]
 #     OUT_DIR  default: out/strong_scaling (table.md, results.csv, scaling.png)
 #     LAGREMAP ARGS  the problem (default: --problem sedov --scale 1.3333 --t-end 0.15,
-#                    40^3 cells, 292 steps)
-#   Environment: SCALING_CONFIGS (default "1x1 1x2 2x1": ranks x threads),
+#                    40^3 cells, 292 steps; SCALING_CASE=rod: the 3D Taylor rod,
+#                    --problem rod --t-end 10e-6, 5,184 cells on its body-fitted
+#                    mesh, its first 10 us)
+#   Environment: SCALING_CASE (sedov or rod, when no LAGREMAP ARGS are given),
+#     SCALING_CONFIGS (default "1x1 1x2 2x1": ranks x threads),
 #     SCALING_REPEATS (default 3; the table shows the best of the runs),
 #     LAGREMAP_BUILD_DIR (default build/).
 # Builds nothing: run scripts/build.sh first. Timings need a quiet machine:
@@ -22,7 +25,13 @@ out=$here/out/strong_scaling
 if [ $# -gt 0 ] && [ "$1" != "--" ]; then out=$1; shift; fi
 [ "${1:-}" = "--" ] && shift
 problem_args=("$@")
-[ ${#problem_args[@]} -eq 0 ] && problem_args=(--problem sedov --scale 1.3333 --t-end 0.15)
+if [ ${#problem_args[@]} -eq 0 ]; then
+  case ${SCALING_CASE:-sedov} in
+    sedov) problem_args=(--problem sedov --scale 1.3333 --t-end 0.15) ;;
+    rod) problem_args=(--problem rod --t-end 10e-6) ;;
+    *) echo "strong_scaling: SCALING_CASE must be sedov or rod" >&2; exit 2 ;;
+  esac
+fi
 configs=${SCALING_CONFIGS:-1x1 1x2 2x1}
 repeats=${SCALING_REPEATS:-3}
 exe=$build/lagremap

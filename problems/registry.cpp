@@ -24,6 +24,7 @@ extern const Problem kTaylorProblem;
 extern const Problem kShellProblem;
 extern const Problem kBeamProblem;
 extern const Problem kBallProblem;
+extern const Problem kRodProblem;
 extern const Problem kAdvectionProblem;
 extern const Problem kAdvection1DProblem;
 extern const Problem kAirHeliumProblem;
@@ -33,7 +34,8 @@ const std::vector<Problem>& problemRegistry() {
   static const std::vector<Problem> problems = {
       kSodProblem,       kSedovProblem,       kWilkinsProblem,   kTaylorProblem,
       kPileProblem,      kBeamProblem,        kShellProblem,     kBallProblem,
-      kAdvectionProblem, kAdvection1DProblem, kAirHeliumProblem, kWaterAirProblem};
+      kRodProblem,       kAdvectionProblem,   kAdvection1DProblem, kAirHeliumProblem,
+      kWaterAirProblem};
   return problems;
 }
 
@@ -567,13 +569,15 @@ void writeRowsInCellOrder(const std::string& keyed_lines, bool distributed, std:
 }
 
 ProblemSetup setupBlock(const Config& config, const Vec3& lo, const Vec3& hi,
-                        std::vector<MaterialParams> materials, CellShapes& shapes) {
+                        std::vector<MaterialParams> materials, CellShapes& shapes,
+                        std::function<Vec3(const Vec3&)> mapping) {
   BlockSpec block;
   block.nx = int(config.integer("mesh.nx"));
   block.ny = int(config.integer("mesh.ny"));
   block.nz = int(config.integer("mesh.nz"));
   block.lo = lo;
   block.hi = hi;
+  block.mapping = std::move(mapping);
   block.part = thisRanksPart(block.nx, block.ny, block.nz);
   ProblemSetup setup;
   setup.mesh = buildBlockMesh(block, readBoundaries(config));

@@ -709,6 +709,93 @@ def plot_taylor_outline(run: Run, out_path: str) -> str:
     return save(fig, out_path)
 
 
+def rod_outline(cells: Dict[str, np.ndarray], polys: np.ndarray):
+    """The rod's outline in its symmetry plane z = 0: a lagrange run's outer
+    cell edges (those no other cell shares), or None for a remap run (whose
+    outline is the alpha = 1/2 contour of copper)."""
+    if not np.all(cells["alpha_cu"] == 1.0):
+        return None
+    edges: Dict[Tuple, int] = {}
+    for poly in np.round(polys, 12):
+        for k in range(4):
+            a, b = tuple(poly[k]), tuple(poly[(k + 1) % 4])
+            key = (a, b) if a < b else (b, a)
+            edges[key] = edges.get(key, 0) + 1
+    return np.array([key for key, count in edges.items() if count == 1])
+
+
+def plot_rod(run: Run, out_path: str) -> str:
+    """3D Taylor rod, like a Taylor test report: the final profile in the
+    symmetry plane z = 0 over the initial rod (lagrange: the deformed mesh's
+    boundary; remap: the alpha = 1/2 contour of copper), the plastic strain
+    in that plane, and the rod length against time with the published band
+    (lagrange solid, remap dashed)."""
+    name = "rod_plane_z0.csv"
+    fig, (ax_rod, ax_len) = plt.subplots(1, 2, figsize=(14, 4.8),
+                                         gridspec_kw={"width_ratios": [1.7, 1]})
+    handles = []
+    art = None
+    for curve in overlay_runs(run):
+        r = curve.run
+        if not r.has(name):
+            continue
+        cells = r.table(name, CORNER_COLUMNS + ["alpha_cu", "plastic_strain"])
+        polys = slice_polygons(cells, r.path(name)) * 1e3
+        outline = rod_outline(cells, polys)
+        if r is run:  # this run's plastic strain (copper's cells)
+            strain = np.where(cells["alpha_cu"] >= 0.5, cells["plastic_strain"], np.nan)
+            art = draw_cells(ax_rod, polys, strain, cmap="magma")
+        if outline is not None:
+            ax_rod.add_collection(LineCollection(outline, colors=curve.style["color"],
+                                                 linestyles=curve.style["ls"], linewidths=1.3))
+            what = "boundary of the deformed mesh"
+        else:
+            centre = polys.mean(axis=1)
+            ax_rod.tricontour(centre[:, 0], centre[:, 1], cells["alpha_cu"], levels=[0.5],
+                              colors=curve.style["color"], linestyles=curve.style["ls"],
+                              linewidths=1.3)
+            what = "α = 1/2 of copper"
+        length = (r.check("final_length") or {}).get("value")
+        radius = (r.check("mushroom_radius") or {}).get("value")
+        numbers = ""
+        if isinstance(length, (int, float)) and isinstance(radius, (int, float)):
+            numbers = f": L = {length * 1e3:.2f} mm, R = {radius * 1e3:.2f} mm"
+        handles.append(Line2D([], [], lw=1.3, **curve.style,
+                              label=f"{curve.label}, {what}{numbers}"))
+    if art is None:
+        raise InputError(f"{run.dir}: no {name}")
+    config = run.summary.get("config", {})
+    length0 = float(config.get("rod.length", 32.4e-3)) * 1e3
+    radius0 = float(config.get("rod.radius", 3.2e-3)) * 1e3
+    ax_rod.plot([0, length0, length0], [radius0, radius0, 0], ls=":", color="0.5", lw=0.9)
+    handles.append(Line2D([], [], ls=":", color="0.5", lw=0.9, label="initial rod"))
+    fig.colorbar(art, ax=ax_rod, label="equivalent plastic strain", shrink=0.8)
+    ax_rod.set_xlim(-0.5, length0 + 0.5)
+    ax_rod.set_ylim(0, max(2.6 * radius0, 8.0))
+    ax_rod.set_aspect("equal")
+    ax_rod.set_xlabel("x [mm]")
+    ax_rod.set_ylabel("y [mm] (plane z = 0)")
+    ax_rod.legend(handles=handles, loc="upper right", fontsize="small")
+    ax_rod.set_title("Profile and plastic strain at t_end")
+    for curve, history in curve_tables(run, "rod_length.csv", ["t", "length"]):
+        how = ("copper volume along the axis" if curve.run.mode == "remap"
+               else "largest node x")
+        ax_len.plot(history["t"] * 1e6, history["length"] * 1e3, lw=1.2,
+                    label=f"{curve.label} ({how})", **curve.style)
+    band = run.check("final_length") or {}
+    if isinstance(band.get("reference"), (int, float)) and band.get("tolerance"):
+        ref, tol = band["reference"] * 1e3, band["tolerance"] * 1e3
+        ax_len.axhspan(ref - tol, ref + tol, color="0.85",
+                       label=f"reference {ref:.2f} ± {tol:.2f} mm")
+    ax_len.set_xlabel("t [µs]")
+    ax_len.set_ylabel("rod length [mm]")
+    ax_len.grid(alpha=0.3)
+    ax_len.legend(loc="best", fontsize="small")
+    fig.suptitle(pair_title(run, "Taylor anvil test of a round rod (3D)"))
+    fig.tight_layout()
+    return save(fig, out_path)
+
+
 # Colours of the shell's radii, one per CSV column (any other column gets a
 # spare colour), the line style says the mode.
 SHELL_RADIUS_COLOURS = {
@@ -1545,6 +1632,7 @@ PROBLEM_PLOTS: Dict[str, List[Plot]] = {
                Plot("taylor_outline.png", "fields.xmf", plot_taylor_outline)],
     "shell": [Plot("shell.png", "shell_mesh_z0.csv", plot_shell)],
     "beam": [Plot("beam_tip.png", "beam_tip.csv", plot_beam_tip)],
+    "rod": [Plot("rod.png", "rod_plane_z0.csv", plot_rod)],
 }
 
 # Plots drawn for any problem, as long as the run wrote their input: radial

@@ -10,8 +10,8 @@
 
 namespace lagremap {
 
-// Returns the parameters of "Al", "Be-hypo", "Steel-hyper", "Be-hyper" or "Gas"
-// (ideal gas, gamma = 1.4; its state is set per problem). Neo-Hookean presets
+// Returns the parameters of "Al", "Be-hypo", "Cu", "Steel-hyper", "Be-hyper" or
+// "Gas" (ideal gas, gamma = 1.4; its state is set per problem). Neo-Hookean presets
 // leave `mu` at 0: their shear modulus is shearModulus(mat) = E/(2(1+nu)), so an
 // override of E or nu cannot leave a stale mu behind.
 namespace detail {
@@ -48,10 +48,21 @@ inline MaterialParams materialPreset(const std::string& name) {
   if (name == "Be-hypo") {
     return detail::hypoElasticMieGruneisen(1845.0, 12870.0, 2.0, 1.124, 151.9e9, 330.0e6);
   }
+  if (name == "Cu") {
+    // The copper Taylor-rod benchmark's solid (docs/verification.md §8.10):
+    // rho 8930, mu = E / (2 (1 + nu)) of E = 117 GPa, nu = 0.35, Y0 = 0.4 GPa
+    // with linear hardening H = 0.1 GPa; copper's Mie-Gruneisen Hugoniot
+    // (a0 = 3940 m/s, s = 1.49, Gamma0 = 2.0).
+    MaterialParams cu = detail::hypoElasticMieGruneisen(8930.0, 3940.0, 2.0, 1.49,
+                                                        117.0e9 / (2.0 * 1.35), 0.4e9);
+    cu.hardening = HardeningKind::Linear;
+    cu.hardening_modulus = 0.1e9;
+    return cu;
+  }
   if (name == "Steel-hyper") return detail::neoHookean(8000.0, 200.0e9, 0.0);
   if (name == "Be-hyper") return detail::neoHookean(1845.0, 3.1827e11, 0.0539);
   throw std::invalid_argument("unknown material preset '" + name +
-                              "' (known: Al, Be-hypo, Steel-hyper, Be-hyper, Gas)");
+                              "' (known: Al, Be-hypo, Cu, Steel-hyper, Be-hyper, Gas)");
 }
 
 }  // namespace lagremap

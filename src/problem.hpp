@@ -204,8 +204,10 @@ struct CellShapes {
 // the given material table and the shapes of its cells; on a decomposed run,
 // this rank's part of it (thisRanksPart): the generators compute each cell's
 // initial state from its own geometry, so they fill the part alone.
+// `mapping`: BlockSpec::mapping (the identity if empty).
 ProblemSetup setupBlock(const Config& config, const Vec3& lo, const Vec3& hi,
-                        std::vector<MaterialParams> materials, CellShapes& shapes);
+                        std::vector<MaterialParams> materials, CellShapes& shapes,
+                        std::function<Vec3(const Vec3&)> mapping = {});
 
 // Initial state of a multi-material problem (remap mode): the material of
 // each point, each material's uniform density and specific internal energy,

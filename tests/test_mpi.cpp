@@ -268,7 +268,9 @@ std::vector<Case> cases() {
   return {{"sedov", "lagrange", {"t_end=0.3"}, 0.5},
           {"pile", "lagrange", {"t_end=1e-3"}, 1.0},
           {"taylor", "remap", {"t_end=2e-4"}, 0.25},
-          {"beam", "remap", {"t_end=2e-6"}, 0.5}};
+          {"beam", "remap", {"t_end=2e-6"}, 0.5},
+          // the 3D rod on its mapped block (cuts across y and z), hardening
+          {"rod", "lagrange", {"t_end=4e-6", "mesh.nx=24", "mesh.ny=4", "mesh.nz=4"}, 1.0}};
 }
 
 TEST(RankCount, DecomposedRunsReproduceTheSingleRankRun) {
@@ -473,6 +475,14 @@ TEST(Checks, FromOwnedCellsAreTheSingleRankChecks) {
       {{"ball", "remap", {"t_end=2e-7"}, 0.25}, {}, {}, {"ball_advance_fraction"}},
       // the row of cells gathered in cell order
       {{"wilkins", "lagrange", {"t_end=1e-6"}, 1.0}, {"wilkins_profile.csv"}, {}},
+      // the impact face's nodes, the largest eps_p; the fronts along two rows
+      {{"rod", "lagrange", {"t_end=4e-6", "mesh.nx=24", "mesh.ny=4", "mesh.nz=4"}, 1.0},
+       {"rod_plane_z0.csv"},
+       {},
+       {"final_length"}},
+      {{"rod", "remap", {"t_end=2e-6", "mesh.nx=17", "mesh.ny=6", "mesh.nz=6"}, 1.0},
+       {"rod_plane_z0.csv"},
+       {}},
       {{"wilkins", "remap", {"t_end=1e-6"}, 1.0}, {"wilkins_profile.csv"}, {}}};
   for (const OwnedCase& c : owned_cases) {
     const std::string dir =

@@ -17,6 +17,7 @@
 #include "src/diagnostics.hpp"
 #include "src/lagrange_step.hpp"
 #include "src/materials.hpp"
+#include "src/setup.hpp"
 #include "test_support.hpp"
 
 namespace lagremap {
@@ -417,6 +418,71 @@ TEST(SolidProblems, CollapsingShellStaysRoundOnItsPolarMesh) {
   ASSERT_NE(check, result.checks.end());
   std::printf("shell 5 x 30: inner surface (max - min) / min radius %.2e\n", check->value);
   EXPECT_LT(check->value, 2e-3);
+}
+
+// ---------------------------------------------------------------- the 3D rod
+
+// The rod's body-fitted mesh (lagrange mode): every cross-section the
+// quarter disc of radius R up to its chords, so the volume is that of the
+// inscribed polygon times L; no cell degenerate (on the axis nor at the 45
+// degree point where the arc's halves meet), the symmetry planes flat.
+TEST(Rod, BodyFittedMeshIsAQuarterCylinderWithoutDegenerateCells) {
+  for (int n : {4, 8}) {
+    Config config = declareConfig(findProblem("rod"), "lagrange");
+    config.set("mesh.nx", "20");
+    config.set("mesh.ny", std::to_string(n));
+    config.set("mesh.nz", std::to_string(n));
+    const ProblemSetup setup = findProblem("rod").setup(config);
+    std::vector<double> volume;
+    std::vector<Vec3> centroid;
+    const HostMesh mesh = copyToHost(setup.mesh);
+    hostCellShapes(mesh, volume, centroid);
+    const double R = config.real("rod.radius"), L = config.real("rod.length");
+    double total = 0.0, smallest = INFINITY, largest = 0.0;
+    for (double v : volume) {
+      total += v;
+      smallest = std::min(smallest, v);
+      largest = std::max(largest, v);
+    }
+    // the arc's 2n chords, each of angle pi / (4 n)
+    const double polygon = 2 * n * 0.5 * R * R * std::sin(std::acos(-1.0) / (4 * n));
+    EXPECT_NEAR(total, polygon * L, 1e-12 * total) << n;
+    EXPECT_GT(smallest / largest, 0.5) << n;
+    for (Index node = 0; node < Index(mesh.x_n.extent(0)); ++node) {
+      EXPECT_GE(mesh.x_n(node, 1), 0.0);
+      EXPECT_GE(mesh.x_n(node, 2), 0.0);
+      EXPECT_LE(std::hypot(mesh.x_n(node, 1), mesh.x_n(node, 2)), R * (1 + 1e-14));
+    }
+  }
+}
+
+// The rod, coarse and short, in both modes: it runs, conserves, hardens
+// (its copper carries eps_p, in snapshots as plastic_strain) and the
+// checks of the default case say n/a for a shorter run.
+TEST(Rod, CoarseShortRunsConserveAndHarden) {
+  for (const char* mode : {"lagrange", "remap"}) {
+    RunOptions options = testing::problemOptions(
+        "rod",
+        std::string(mode) == "lagrange"
+            ? std::vector<std::string>{"mesh.nx=20", "mesh.ny=3", "mesh.nz=3", "t_end=8e-6"}
+            : std::vector<std::string>{"mesh.nx=17", "mesh.ny=5", "mesh.nz=5", "t_end=8e-6"},
+        1.0, mode);
+    const RunResult result = runProblem(options);
+    ASSERT_FALSE(result.failed) << mode << ": " << result.failure;
+    std::printf("rod %-8s %4ld steps, %5ld cells: drift mass %.1e, momentum %.1e, energy %.1e\n",
+                mode, result.steps, result.cells, result.drift_mass, result.drift_momentum,
+                result.drift_energy);
+    EXPECT_LT(result.drift_mass, 1e-14) << mode;
+    EXPECT_LT(result.drift_momentum, 1e-12) << mode;
+    EXPECT_LT(result.drift_energy, 1e-12) << mode;
+    double largest = 0.0;
+    for (std::size_t i = 0; i < result.fields.eps_k.size(); ++i)
+      largest = std::max(largest, result.fields.eps_k.data()[i]);
+    EXPECT_GT(largest, 0.05) << mode;
+    for (const Check& check : result.checks) {  // (mixed_cells is every remap run's)
+      if (check.name != "mixed_cells") EXPECT_FALSE(check.applies) << mode << " " << check.name;
+    }
+  }
 }
 
 // ---------------------------------------------------------------- conservation
