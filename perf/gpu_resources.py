@@ -31,6 +31,9 @@ LAUNCHED = re.compile(r"Parallel(?:For|Reduce|Scan)<(?:Kokkos::Impl::CudaFunctor
 # ours: a lambda of a lagremap function, or a lagremap functor
 LAMBDA_OF = re.compile(r"lagremap::(?:\w+::)*(\w+)\(")
 FUNCTOR = re.compile(r"lagremap::(?:\w+::)*(\w+)")
+# nvcc's prefix of a name of internal linkage (a `static` launcher's lambda):
+# _INTERNAL_<hash>_<length>_<file>_<hash>::lagremap::...
+INTERNAL = re.compile(r"_INTERNAL_[0-9A-Za-z_]+::|\(anonymous namespace\)::")
 
 
 def demangle(names):
@@ -43,11 +46,12 @@ def kernel_label(demangled):
     launched = LAUNCHED.search(demangled)
     if not launched:
         return None
-    functor = demangled[launched.end():]
+    functor = INTERNAL.sub("", demangled[launched.end():])
     if not functor.startswith("lagremap::"):
         return None  # Kokkos' own (a view copy or fill), whatever its value type
     lambda_of = LAMBDA_OF.match(functor)  # a name followed by "(": a function's lambda
-    return (lambda_of or FUNCTOR.match(functor)).group(1)
+    named = lambda_of or FUNCTOR.match(functor)
+    return named.group(1) if named else functor.split("<", 1)[0]
 
 
 def parse(lines):
@@ -73,18 +77,23 @@ def parse(lines):
 
 
 def read_bounds(path):
-    """{kernel or '*': (registers, stack, spill)} from a bounds file."""
-    bounds = {}
+    """{kernel or '*': (registers, stack, spill)} from a bounds file, and the
+    kernels its `required` lines name (which the report must hold: a kernel
+    whose name no longer parses would otherwise pass unseen)."""
+    bounds, required = {}, []
     for number, line in enumerate(open(path, encoding="utf-8"), 1):
         fields = line.split("#", 1)[0].split()
         if not fields:
+            continue
+        if fields[0] == "required":
+            required += fields[1:]
             continue
         if len(fields) != 4 or not all(f.isdigit() for f in fields[1:]):
             sys.exit(f"gpu_resources: {path}:{number}: expected 'KERNEL REGISTERS STACK SPILL'")
         bounds[fields[0]] = tuple(int(f) for f in fields[1:])
     if "*" not in bounds:
         sys.exit(f"gpu_resources: {path}: no '*' line (the bound of every kernel)")
-    return bounds
+    return bounds, required
 
 
 def check(rows, bounds):
@@ -106,11 +115,11 @@ def check(rows, bounds):
 
 def main():
     args = sys.argv[1:]
-    bounds = None
+    bounds, required = None, []
     if args[:1] == ["--bounds"]:
         if len(args) < 2:
             sys.exit("gpu_resources: --bounds needs a file")
-        bounds = read_bounds(args[1])
+        bounds, required = read_bounds(args[1])
         args = args[2:]
     lines = []
     for path in args or ["-"]:
@@ -145,14 +154,17 @@ def main():
     if bounds is None:
         return
     failures, met = check(rows, bounds)
+    reported = {label for label, _ in rows}
+    failures += [f"{label}: not in the report (its launch's name no longer parses, or it is gone)"
+                 for label in required if label not in reported]
     general = bounds["*"]
     for label in met:
         print(f"gpu_resources: {label} now meets the general bound: remove its line from the "
               "bounds file")
     if failures:
         for failure in failures:
-            print(f"gpu_resources: over its bound: {failure}")
-        sys.exit(f"gpu_resources: {len(failures)} kernels over their bounds")
+            print(f"gpu_resources: over its bound or missing: {failure}")
+        sys.exit(f"gpu_resources: {len(failures)} kernels over their bounds or missing")
     print(f"gpu_resources: every kernel within its bound ({general[0]} registers, {general[1]} B "
           f"stack, {general[2]} B spills; {len(bounds) - 1} kernels with bounds of their own)")
 

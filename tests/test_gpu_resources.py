@@ -32,9 +32,36 @@ def main():
     if not out.splitlines()[-1].startswith("2 lagremap kernels (2 instances), 1 spill"):
         failures.append("summary line: " + out.splitlines()[-1])
     failures += bounds_failures(script, report)
+    failures += internal_linkage_failures(script, os.path.join(os.path.dirname(report),
+                                                               "ptxas_report_internal.txt"))
     if failures:
         sys.exit("test_gpu_resources: " + "; ".join(failures))
     print("test_gpu_resources: pass")
+
+
+def internal_linkage_failures(script, report):
+    """A `static` launcher's lambda (nvcc names it _INTERNAL_<hash>_<file>::
+    lagremap::...: tests/data/ptxas_report_internal.txt, remapDensities of
+    remap_step.cpp) is ours; a `required` kernel missing from the report fails
+    the --bounds check (when the names stopped parsing, the check passed with
+    none of the step's kernels in it)."""
+    failures = []
+    out = subprocess.run(["/usr/bin/python3", script, report], capture_output=True, text=True,
+                         check=True).stdout
+    if "remapDensities" not in out or "1 lagremap kernels" not in out:
+        failures.append("internal-linkage kernel not labelled: " + out)
+    with tempfile.TemporaryDirectory() as work:
+        path = os.path.join(work, "bounds.txt")
+        for required, code in (("remapDensities", 0), ("remapDensities nodalSolve", 1)):
+            with open(path, "w", encoding="utf-8") as bounds:
+                bounds.write(f"* 128 256 0\nrequired {required}\n")
+            result = subprocess.run(["/usr/bin/python3", script, "--bounds", path, report],
+                                    capture_output=True, text=True)
+            if result.returncode != code or (code and "nodalSolve: not in the report"
+                                             not in result.stdout):
+                failures.append(f"required {required}: exit {result.returncode}, " +
+                                result.stdout + result.stderr)
+    return failures
 
 
 def bounds_failures(script, report):
