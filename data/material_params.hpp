@@ -39,6 +39,10 @@ struct MaterialParams {
   StrengthKind strength = StrengthKind::None;
   double mu = 0.0;            // shear modulus, hypo-elastic (use shearModulus())
   double yield_stress = 0.0;  // Y0 (Johnson-Cook's A), von Mises
+  double young = 0.0;         // E, Neo-Hookean
+  double poisson = 0.0;       // nu, Neo-Hookean
+  // Hypo-elastic hardening (last: the fields above keep their places, which
+  // the per-cell kernels read).
   HardeningKind hardening = HardeningKind::Perfect;
   double hardening_modulus = 0.0;  // H, linear hardening
   // Johnson-Cook: B, n, C, the reference rate rate0 [1/s] and the thermal
@@ -46,8 +50,6 @@ struct MaterialParams {
   // no thermal softening), T* = (T - T_room) / (T_melt - T_room) in [0, 1].
   double jc_B = 0.0, jc_n = 1.0, jc_C = 0.0, jc_rate0 = 1.0, jc_m = 1.0;
   double room_temperature = 293.0, melt_temperature = 0.0, specific_heat = 0.0;
-  double young = 0.0;         // E, Neo-Hookean
-  double poisson = 0.0;       // nu, Neo-Hookean
 };
 
 // A solid whose yield stress reads its equivalent plastic strain, which the

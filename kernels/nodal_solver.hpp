@@ -1375,14 +1375,16 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
           detail::materialGradient(s, c, k, mixed, gradient, own_ratio, dt_stage);
       const SymMat3 trial =
           jaumannUpdate(loadSym(s.S_ck0, c, k), gradient_k, material.mu, dt_stage);
-      // (the temperature of the step start: both stages return at the same
-      // T*; a perfectly plastic solid carries no strain, hasPlasticStrain)
-      const bool hardens = hasPlasticStrain(material);
-      const PlasticUpdate plastic =
-          plasticReturn(trial, material, hardens ? s.eps_ck0(c, k) : 0.0, dt_stage,
-                        hardens ? homologousTemperature(material, s.e_ck0(c, k)) : 0.0);
-      storeSym(s.S_ck, c, k, plastic.S);
-      if (hardens) s.eps_ck(c, k) = plastic.eps_p;
+      if (hasPlasticStrain(material)) {
+        // (the temperature of the step start: both stages return at the same T*)
+        const PlasticUpdate plastic =
+            plasticReturn(trial, material, s.eps_ck0(c, k), dt_stage,
+                          homologousTemperature(material, s.e_ck0(c, k)));
+        storeSym(s.S_ck, c, k, plastic.S);
+        s.eps_ck(c, k) = plastic.eps_p;
+      } else {  // perfectly plastic: no strain to carry
+        storeSym(s.S_ck, c, k, radialReturn(trial, material.yield_stress).S);
+      }
     } else if (kNeo && material.strength == StrengthKind::NeoHookean) {
       if (!deformation_known) {
         if constexpr (kStaged) {

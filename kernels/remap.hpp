@@ -53,16 +53,17 @@ struct RemapLayout {
   // hypo-elastic material, alpha^k B^k for a Neo-Hookean one), -1 for a fluid.
   Kokkos::Array<int, kMaxMaterials> tensor_column;
   // The column of material k's plastic strain, (alpha rho eps_p)^k (a
-  // hardening material, hasPlasticStrain), -1 for the others; the last columns,
-  // from plastic_begin on (n_variables when there are none).
+  // hardening material, hasPlasticStrain), -1 for the others: after the
+  // energies, before the momentum (so a column is per unit mass, as the
+  // mass, energy and plastic strain are, exactly when v < kinetic()).
   Kokkos::Array<int, kMaxMaterials> plastic_column;
-  int plastic_begin = 0;
+  int momentum_begin = 0;  // 3 n_materials + the plastic strains' columns
 
   KOKKOS_INLINE_FUNCTION int alpha(int k) const { return k; }
   KOKKOS_INLINE_FUNCTION int mass(int k) const { return n_materials + k; }
   KOKKOS_INLINE_FUNCTION int energy(int k) const { return 2 * n_materials + k; }
-  KOKKOS_INLINE_FUNCTION int momentum(int d) const { return 3 * n_materials + d; }
-  KOKKOS_INLINE_FUNCTION int kinetic() const { return 3 * n_materials + 3; }
+  KOKKOS_INLINE_FUNCTION int momentum(int d) const { return momentum_begin + d; }
+  KOKKOS_INLINE_FUNCTION int kinetic() const { return momentum_begin + 3; }
   // Columns with a reconstructed gradient. The gradient is that of the
   // primitive variable of the column (remapDensities): alpha^k, rho^k, e^k,
   // the velocity, the tensors S^k or B^k and eps_p^k; the kinetic energy is
@@ -81,8 +82,7 @@ struct RemapLayout {
     const int k = column_material[v];
     if (k < 0) return true;
     const bool has_volume = q(c, alpha(k)) > 0.0;
-    const bool per_volume = v > kinetic() && v < plastic_begin;  // a tensor's column
-    return per_volume ? has_volume : has_volume && q(c, mass(k)) > 0.0;
+    return v > kinetic() ? has_volume : has_volume && q(c, mass(k)) > 0.0;
   }
 };
 
@@ -576,22 +576,22 @@ KOKKOS_FORCEINLINE_FUNCTION void fluxInteriorRegion(const RemapLayout& layout,
     }
     integral[layout.energy(m)] += energy_flux;
     mass_flux_total += mass_flux;
-    const int plastic = layout.plastic_column[m];
-    if (plastic >= 0) {  // eps_p rides on the mass flux as e^k does
-      const double eps_up = w(up, plastic);
-      double plastic_flux = mass_flux * eps_up + (pure_up ? mass_up * slope(plastic) : 0.0);
-      if (limit) {
-        plastic_flux = boundedSpecificFlux(layout, fields, up == c ? nb : c, m, plastic,
-                                           mass_flux, eps_up, plastic_flux);
-      }
-      integral[plastic] += plastic_flux;
-    }
     const int column = layout.tensor_column[m];
     if (column < 0) continue;
     for (int i = 0; i < 6; ++i) {
       integral[column + i] +=
           alpha_flux * w(up, column + i) + (pure_up ? alpha_up * slope(column + i) : 0.0);
     }
+    // a hardening solid's eps_p rides on the mass flux as e^k does
+    const int plastic = layout.plastic_column[m];
+    if (plastic < 0) continue;
+    const double eps_up = w(up, plastic);
+    double plastic_flux = mass_flux * eps_up + (pure_up ? mass_up * slope(plastic) : 0.0);
+    if (limit) {
+      plastic_flux = boundedSpecificFlux(layout, fields, up == c ? nb : c, m, plastic, mass_flux,
+                                         eps_up, plastic_flux);
+    }
+    integral[plastic] += plastic_flux;
   }
   // dm V_r and dm |V_r|^2 / 2: a new velocity is a weighted mean of limited
   // values, and the kinetic-energy fix is the same in every frame.

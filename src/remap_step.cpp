@@ -15,9 +15,18 @@ RemapLayout makeRemapLayout(const State& state) {
   const auto materials = Kokkos::create_mirror_view_and_copy(HostSpace(), state.materials);
   RemapLayout layout;
   layout.n_materials = state.n_materials;
-  int column = 3 * state.n_materials + 4;
   for (int k = 0; k < kMaxMaterials; ++k) layout.tensor_column[k] = -1;
+  for (int k = 0; k < kMaxMaterials; ++k) layout.plastic_column[k] = -1;
   for (int v = 0; v < kMaxRemapVariables; ++v) layout.column_material[v] = -1;
+  int column = 3 * state.n_materials;  // the plastic strains after the energies
+  for (int k = 0; k < state.n_materials; ++k) {
+    if (!hasPlasticStrain(materials(k))) continue;
+    layout.plastic_column[k] = column;
+    layout.column_material[column] = k;
+    ++column;
+  }
+  layout.momentum_begin = column;
+  column += 4;  // momentum and kinetic energy
   for (int k = 0; k < state.n_materials; ++k) {
     layout.column_material[layout.mass(k)] = k;
     layout.column_material[layout.energy(k)] = k;
@@ -25,14 +34,6 @@ RemapLayout makeRemapLayout(const State& state) {
     layout.tensor_column[k] = column;
     for (int i = 0; i < 6; ++i) layout.column_material[column + i] = k;
     column += 6;
-  }
-  layout.plastic_begin = column;
-  for (int k = 0; k < kMaxMaterials; ++k) layout.plastic_column[k] = -1;
-  for (int k = 0; k < state.n_materials; ++k) {
-    if (!hasPlasticStrain(materials(k))) continue;
-    layout.plastic_column[k] = column;
-    layout.column_material[column] = k;
-    ++column;
   }
   layout.n_variables = column;
   return layout;
