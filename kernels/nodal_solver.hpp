@@ -1377,9 +1377,8 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
           jaumannUpdate(loadSym(s.S_ck0, c, k), gradient_k, material.mu, dt_stage);
       if (hasPlasticStrain(material)) {
         // (the temperature of the step start: both stages return at the same T*)
-        const PlasticUpdate plastic =
-            plasticReturn(trial, material, s.eps_ck0(c, k), dt_stage,
-                          homologousTemperature(material, s.e_ck0(c, k)));
+        const PlasticUpdate plastic = plasticReturn(trial, material, s.eps_ck0(c, k), dt_stage,
+                                                    homologousTemperature(material, s.e_ck0(c, k)));
         storeSym(s.S_ck, c, k, plastic.S);
         s.eps_ck(c, k) = plastic.eps_p;
       } else {  // perfectly plastic: no strain to carry

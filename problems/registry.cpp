@@ -32,10 +32,9 @@ extern const Problem kWaterAirProblem;
 
 const std::vector<Problem>& problemRegistry() {
   static const std::vector<Problem> problems = {
-      kSodProblem,       kSedovProblem,       kWilkinsProblem,   kTaylorProblem,
-      kPileProblem,      kBeamProblem,        kShellProblem,     kBallProblem,
-      kRodProblem,       kAdvectionProblem,   kAdvection1DProblem, kAirHeliumProblem,
-      kWaterAirProblem};
+      kSodProblem,         kSedovProblem,     kWilkinsProblem, kTaylorProblem, kPileProblem,
+      kBeamProblem,        kShellProblem,     kBallProblem,    kRodProblem,    kAdvectionProblem,
+      kAdvection1DProblem, kAirHeliumProblem, kWaterAirProblem};
   return problems;
 }
 

@@ -107,8 +107,8 @@ ProblemSetup setupRod(const Config& config) {
     if (!(domain_length > rod.length && width > rod.radius)) {
       throw ConfigError("rod: the remap domain must contain the rod");
     }
-    ProblemSetup setup = setupBlock(config, {0, 0, 0}, {domain_length, width, width},
-                                    {metal, gas.material}, shapes);
+    ProblemSetup setup =
+        setupBlock(config, {0, 0, 0}, {domain_length, width, width}, {metal, gas.material}, shapes);
     MaterialRegions regions;
     regions.material_at = [=](const Vec3& x) {
       return x.x < rod.length && x.y * x.y + x.z * x.z < rod.radius * rod.radius ? 0 : 1;
@@ -122,11 +122,11 @@ ProblemSetup setupRod(const Config& config) {
     return setup;
   }
   // the block [0, L] x [0, 1]^2, its cross-sections mapped onto the quarter disc
-  ProblemSetup setup = setupBlock(
-      config, {0, 0, 0}, {rod.length, 1.0, 1.0}, {metal}, shapes, [R = rod.radius](const Vec3& p) {
-        const Vec3 section = quarterDisc(p.y, p.z, R);
-        return Vec3{p.x, section.y, section.z};
-      });
+  ProblemSetup setup = setupBlock(config, {0, 0, 0}, {rod.length, 1.0, 1.0}, {metal}, shapes,
+                                  [R = rod.radius](const Vec3& p) {
+                                    const Vec3 section = quarterDisc(p.y, p.z, R);
+                                    return Vec3{p.x, section.y, section.z};
+                                  });
   for (std::size_t c = 0; c < shapes.volume.size(); ++c) {
     setup.cells.rho.push_back(metal.rho0);
     setup.cells.e.push_back(0.0);
@@ -210,7 +210,8 @@ double alphaFront(const FinalFields& fields, int axis) {
   }
   const std::vector<double> records = recordsOfAllRanks(fields, mine);
   std::vector<std::pair<double, double>> row;
-  for (std::size_t i = 0; i + 1 < records.size(); i += 2) row.emplace_back(records[i], records[i + 1]);
+  for (std::size_t i = 0; i + 1 < records.size(); i += 2)
+    row.emplace_back(records[i], records[i + 1]);
   std::sort(row.begin(), row.end());
   for (std::size_t i = row.size(); i-- > 1;) {
     const auto [x1, a1] = row[i];

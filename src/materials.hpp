@@ -53,8 +53,8 @@ inline MaterialParams materialPreset(const std::string& name) {
     // rho 8930, mu = E / (2 (1 + nu)) of E = 117 GPa, nu = 0.35, Y0 = 0.4 GPa
     // with linear hardening H = 0.1 GPa; copper's Mie-Gruneisen Hugoniot
     // (a0 = 3940 m/s, s = 1.49, Gamma0 = 2.0).
-    MaterialParams cu = detail::hypoElasticMieGruneisen(8930.0, 3940.0, 2.0, 1.49,
-                                                        117.0e9 / (2.0 * 1.35), 0.4e9);
+    MaterialParams cu =
+        detail::hypoElasticMieGruneisen(8930.0, 3940.0, 2.0, 1.49, 117.0e9 / (2.0 * 1.35), 0.4e9);
     cu.hardening = HardeningKind::Linear;
     cu.hardening_modulus = 0.1e9;
     return cu;

@@ -184,8 +184,8 @@ std::vector<FieldRef> remappedCellFields(const State& s) {
   return list;
 }
 
-void copySolidDeviators(const MatSym6View& to, const MatSym6View& from,
-                        const MatRealView& eps_to, const MatRealView& eps_from, unsigned solids) {
+void copySolidDeviators(const MatSym6View& to, const MatSym6View& from, const MatRealView& eps_to,
+                        const MatRealView& eps_from, unsigned solids) {
   const int n_materials = int(to.extent(1));
   const bool plastic = eps_to.extent(0) > 0;
   Kokkos::parallel_for(

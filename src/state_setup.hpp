@@ -28,7 +28,7 @@ void allocateMaterialState(State& state, Index n_cells, int n_materials, bool ha
 // (bit k: material k has strength), `from` -> `to` (the step-start copy and
 // its restoring): a fluid's deviator and plastic strain are zero throughout
 // (nothing writes them), so half a two-material run's columns need no copy.
-void copySolidDeviators(const MatSym6View& to, const MatSym6View& from,
-                        const MatRealView& eps_to, const MatRealView& eps_from, unsigned solids);
+void copySolidDeviators(const MatSym6View& to, const MatSym6View& from, const MatRealView& eps_to,
+                        const MatRealView& eps_from, unsigned solids);
 
 }  // namespace lagremap

@@ -444,7 +444,10 @@ TEST(Remap, PlasticStrainIsRemappedWithItsMaterialsMassWithoutNewExtrema) {
   box.moveInteriorNodes(0.25, 11);
   box.geometry();
   box.setFields([](const Vec3& x) { return std::hypot(x.x - 0.8, x.y - 0.6) < 0.4 ? 0.05 : 0.95; },
-                [](const Vec3& x) { return Vec3{std::sin(3 * x.y), 0.5 * x.x, 0.2}; }, 4.0, 0.7);
+                [](const Vec3& x) {
+                  return Vec3{std::sin(3 * x.y), 0.5 * x.x, 0.2};
+                },
+                4.0, 0.7);
   auto eps = Kokkos::create_mirror_view(box.state.eps_ck);
   auto x_c = Kokkos::create_mirror_view_and_copy(HostSpace(), box.state.x_c);
   const Index n_cells = box.setup.mesh.n_cells;
