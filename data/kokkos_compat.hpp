@@ -29,6 +29,15 @@ using Kokkos::Experimental::sqrt;
 
 }  // namespace lagremap::math
 
+// A function kept out of line on the host, for a rarely taken branch of a
+// hot kernel whose frame it would otherwise grow for every call. Device
+// passes inline as they choose.
+#if defined(__CUDA_ARCH__) || defined(__HIP_DEVICE_COMPILE__)
+#define LAGREMAP_OUT_OF_LINE
+#else
+#define LAGREMAP_OUT_OF_LINE __attribute__((noinline))
+#endif
+
 // Full unrolling of the short fixed loops over a hexahedron's faces and nodes:
 // the face-node table then folds into constant offsets and the per-node
 // accumulators stay in registers. Only a hint; every compiler may ignore it.

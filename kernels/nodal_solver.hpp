@@ -1285,6 +1285,20 @@ KOKKOS_FORCEINLINE_FUNCTION void mixedCellBudget(const State& s, Index c, double
   }
 }
 
+// A hardening solid's return and its new plastic strain (the temperature of
+// the step start: both stages return at the same T*). Out of line on the
+// host: inlined, Johnson-Cook's iteration grew updateMaterials' frame and
+// prologue for every cell (+10-22 instructions a cell-step of sedov and
+// shell, which never harden).
+LAGREMAP_OUT_OF_LINE KOKKOS_INLINE_FUNCTION void hardeningReturn(const State& s, Index c, int k,
+                                                                 const SymMat3& trial,
+                                                                 const MaterialParams& material,
+                                                                 double dt_stage) {
+  const PlasticUpdate plastic = plasticReturn(trial, material, s.eps_ck0(c, k), dt_stage,
+                                              homologousTemperature(material, s.e_ck0(c, k)));
+  storeSym(s.S_ck, c, k, plastic.S);
+  s.eps_ck(c, k) = plastic.eps_p;
+}
 }  // namespace detail
 
 // The materials of one cell over the stage (docs/method.md §A7-A8), given the cell's new
@@ -1294,7 +1308,8 @@ KOKKOS_FORCEINLINE_FUNCTION void mixedCellBudget(const State& s, Index c, double
 //   sums to the cell's change; a trace (State::alpha_trace) does no work but
 //   takes its share of D, and so does a trace by mass (kMassTrace);
 // - hypo-elastic deviators: objective Jaumann update of S^k with L, then
-//   radial return (the plastic work is already in the total energy);
+//   radial return, a hardening solid's with its plastic strain (the plastic
+//   work is already in the total energy);
 // - Neo-Hookean B^k = F B^k,n F^T (SPD kept), stretched along a solid body's
 //   interface normal to its own volume ratio.
 // A trace's deviator is not driven by the cell's strain rate (it has no say in
@@ -1376,11 +1391,7 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
       const SymMat3 trial =
           jaumannUpdate(loadSym(s.S_ck0, c, k), gradient_k, material.mu, dt_stage);
       if (hasPlasticStrain(material)) {
-        // (the temperature of the step start: both stages return at the same T*)
-        const PlasticUpdate plastic = plasticReturn(trial, material, s.eps_ck0(c, k), dt_stage,
-                                                    homologousTemperature(material, s.e_ck0(c, k)));
-        storeSym(s.S_ck, c, k, plastic.S);
-        s.eps_ck(c, k) = plastic.eps_p;
+        detail::hardeningReturn(s, c, k, trial, material, dt_stage);
       } else {  // perfectly plastic: no strain to carry
         storeSym(s.S_ck, c, k, radialReturn(trial, material.yield_stress).S);
       }

@@ -480,7 +480,9 @@ TEST(Rod, CoarseShortRunsConserveAndHarden) {
       largest = std::max(largest, result.fields.eps_k.data()[i]);
     EXPECT_GT(largest, 0.05) << mode;
     for (const Check& check : result.checks) {  // (mixed_cells is every remap run's)
-      if (check.name != "mixed_cells") EXPECT_FALSE(check.applies) << mode << " " << check.name;
+      if (check.name != "mixed_cells") {
+        EXPECT_FALSE(check.applies) << mode << " " << check.name;
+      }
     }
   }
 }
