@@ -251,6 +251,45 @@ double sideMeanCentroid(const Mesh& mesh, const State& state, int side, int axis
       KOKKOS_LAMBDA(const Index c) { return x_c(c, axis); });
 }
 
+double materialLengthAlongAxis(const char* label, const Mesh& mesh, const State& state,
+                               bool z_axis_too) {
+  const auto x_n = mesh.x_n;
+  const auto cell_nodes = mesh.cell_nodes;
+  const auto alpha = state.alpha_ck;
+  const auto vol = state.vol_c;
+  const auto owned = mesh.cell_owned;
+  double length = 0.0;
+  Kokkos::parallel_reduce(
+      label, Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
+      KOKKOS_LAMBDA(const Index c, double& sum) {
+        double lo[3], hi[3];
+        for (int d = 1; d < 3; ++d) lo[d] = hi[d] = x_n(cell_nodes(c, 0), d);
+        for (int p = 1; p < 8; ++p) {
+          for (int d = 1; d < 3; ++d) {
+            const double x = x_n(cell_nodes(c, p), d);
+            lo[d] = x < lo[d] ? x : lo[d];
+            hi[d] = x > hi[d] ? x : hi[d];
+          }
+        }
+        const double dy = hi[1] - lo[1], dz = hi[2] - lo[2];
+        const bool on_axis =
+            math::fabs(lo[1]) <= 1e-9 * dy && (!z_axis_too || math::fabs(lo[2]) <= 1e-9 * dz);
+        if (owned(c) && on_axis) sum += alpha(c, 0) * vol(c) / (dy * dz);
+      },
+      length);
+  return parallel::sum(length);
+}
+
+double largestNodeX(const char* label, const Mesh& mesh) {
+  const auto x_n = mesh.x_n;
+  double largest = 0.0;
+  Kokkos::parallel_reduce(
+      label, Kokkos::RangePolicy<ExecSpace>(0, mesh.n_nodes),
+      KOKKOS_LAMBDA(const Index n, double& acc) { acc = x_n(n, 0) > acc ? x_n(n, 0) : acc; },
+      Kokkos::Max<double>(largest));
+  return parallel::max(largest);
+}
+
 AmbientGas readAmbientGas(const Config& config, const std::string& problem) {
   AmbientGas gas;
   gas.material.gamma = config.real("gas.gamma");
@@ -412,9 +451,15 @@ double materialFrontX(const FinalFields& fields, int material, double y_line) {
       mine.insert(mine.end(), {fields.x_c(c, 0), fields.alpha(c, material)});
     }
   }
+  return outwardHalfCrossing(fields, mine);
+}
+
+double outwardHalfCrossing(const FinalFields& fields, const std::vector<double>& mine) {
   const std::vector<double> records = recordsOfAllRanks(fields, mine);
-  std::vector<std::pair<double, double>> row;  // (x, alpha)
-  for (std::size_t i = 0; i < records.size(); i += 2) row.emplace_back(records[i], records[i + 1]);
+  std::vector<std::pair<double, double>> row;  // (coordinate, alpha)
+  for (std::size_t i = 0; i + 1 < records.size(); i += 2) {
+    row.emplace_back(records[i], records[i + 1]);
+  }
   std::sort(row.begin(), row.end());
   for (std::size_t i = row.size(); i-- > 1;) {
     const auto [x1, a1] = row[i];

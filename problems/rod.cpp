@@ -141,38 +141,9 @@ ProblemSetup setupRod(const Config& config) {
 // cells with a corner on it) over the row's cross-section, sum alpha v /
 // (dy dz): a smooth measure (the check reads the alpha = 1/2 front).
 double rodLength(const Mesh& mesh, const State& state) {
-  const auto x_n = mesh.x_n;
-  double length = 0.0;
-  if (state.n_materials > 1) {
-    const auto cell_nodes = mesh.cell_nodes;
-    const auto alpha = state.alpha_ck;
-    const auto vol = state.vol_c;
-    const auto owned = mesh.cell_owned;
-    Kokkos::parallel_reduce(
-        "lagremap::diagnostics::rod_length_alpha", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
-        KOKKOS_LAMBDA(const Index c, double& sum) {
-          double lo[3], hi[3];
-          for (int d = 0; d < 3; ++d) lo[d] = hi[d] = x_n(cell_nodes(c, 0), d);
-          for (int p = 1; p < 8; ++p) {
-            for (int d = 1; d < 3; ++d) {
-              const double x = x_n(cell_nodes(c, p), d);
-              lo[d] = x < lo[d] ? x : lo[d];
-              hi[d] = x > hi[d] ? x : hi[d];
-            }
-          }
-          const double dy = hi[1] - lo[1], dz = hi[2] - lo[2];
-          if (owned(c) && math::fabs(lo[1]) <= 1e-9 * dy && math::fabs(lo[2]) <= 1e-9 * dz) {
-            sum += alpha(c, 0) * vol(c) / (dy * dz);
-          }
-        },
-        length);
-    return parallel::sum(length);
-  }
-  Kokkos::parallel_reduce(
-      "lagremap::diagnostics::rod_length", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_nodes),
-      KOKKOS_LAMBDA(const Index n, double& acc) { acc = x_n(n, 0) > acc ? x_n(n, 0) : acc; },
-      Kokkos::Max<double>(length));
-  return parallel::max(length);
+  return state.n_materials > 1
+             ? materialLengthAlongAxis("lagremap::diagnostics::rod_length_alpha", mesh, state, true)
+             : largestNodeX("lagremap::diagnostics::rod_length", mesh);
 }
 
 // Lagrange: the largest distance from the axis of a node on the wall (the
@@ -208,17 +179,7 @@ double alphaFront(const FinalFields& fields, int axis) {
     }
     if (in_row) mine.insert(mine.end(), {fields.x_c(c, axis), fields.alpha(c, 0)});
   }
-  const std::vector<double> records = recordsOfAllRanks(fields, mine);
-  std::vector<std::pair<double, double>> row;
-  for (std::size_t i = 0; i + 1 < records.size(); i += 2)
-    row.emplace_back(records[i], records[i + 1]);
-  std::sort(row.begin(), row.end());
-  for (std::size_t i = row.size(); i-- > 1;) {
-    const auto [x1, a1] = row[i];
-    const auto [x0, a0] = row[i - 1];
-    if (a0 >= 0.5 && a1 < 0.5) return x0 + (a0 - 0.5) / (a0 - a1) * (x1 - x0);
-  }
-  return NAN;
+  return outwardHalfCrossing(fields, mine);
 }
 
 // The largest plastic strain of copper over the cells (remap: those where

@@ -94,37 +94,9 @@ ProblemSetup setupTaylor(const Config& config) {
 // above the axis divided by the row's cross-section, sum alpha v / (dy dz),
 // a smooth measure of the length (the check reads the alpha = 0.5 contour).
 double barLength(const Mesh& mesh, const State& state) {
-  const auto x_n = mesh.x_n;
-  double length = 0.0;
-  if (state.n_materials > 1) {
-    const auto cell_nodes = mesh.cell_nodes;
-    const auto alpha = state.alpha_ck;
-    const auto vol = state.vol_c;
-    const auto owned = mesh.cell_owned;
-    Kokkos::parallel_reduce(
-        "lagremap::diagnostics::bar_length_alpha", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
-        KOKKOS_LAMBDA(const Index c, double& sum) {
-          double y_lo = x_n(cell_nodes(c, 0), 1), y_hi = y_lo;
-          double z_lo = x_n(cell_nodes(c, 0), 2), z_hi = z_lo;
-          for (int p = 1; p < 8; ++p) {
-            const double y = x_n(cell_nodes(c, p), 1), z = x_n(cell_nodes(c, p), 2);
-            y_lo = y < y_lo ? y : y_lo;
-            y_hi = y > y_hi ? y : y_hi;
-            z_lo = z < z_lo ? z : z_lo;
-            z_hi = z > z_hi ? z : z_hi;
-          }
-          if (owned(c) && math::fabs(y_lo) <= 1e-9 * (y_hi - y_lo)) {
-            sum += alpha(c, 0) * vol(c) / ((y_hi - y_lo) * (z_hi - z_lo));
-          }
-        },
-        length);
-    return parallel::sum(length);
-  }
-  Kokkos::parallel_reduce(
-      "lagremap::diagnostics::bar_length", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_nodes),
-      KOKKOS_LAMBDA(const Index n, double& acc) { acc = x_n(n, 0) > acc ? x_n(n, 0) : acc; },
-      Kokkos::Max<double>(length));
-  return parallel::max(length);
+  return state.n_materials > 1 ? materialLengthAlongAxis("lagremap::diagnostics::bar_length_alpha",
+                                                         mesh, state, false)
+                               : largestNodeX("lagremap::diagnostics::bar_length", mesh);
 }
 
 std::vector<Check> finishTaylor(const Config& config, const FinalFields& fields,

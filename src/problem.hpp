@@ -243,6 +243,19 @@ void writeCellOutlines(const std::string& path, const FinalFields& fields);
 // on the row of cells nearest to the line y = y_line, z = mid-thickness
 // (linear interpolation between cell centroids), or NAN if it never does.
 double materialFrontX(const FinalFields& fields, int material, double y_line);
+// A bar's or rod's length from material 0's volume in the row of cells along
+// the x axis (those with a side on y = 0, and on z = 0 when z_axis_too), over
+// each cell's cross-section, sum alpha v / (dy dz): a smooth measure, summed
+// over the ranks. `label`: the kernel's.
+double materialLengthAlongAxis(const char* label, const Mesh& mesh, const State& state,
+                               bool z_axis_too);
+// The largest node x over the ranks (a body on the wall x = 0: its length).
+double largestNodeX(const char* label, const Mesh& mesh);
+// The outermost place where a volume fraction falls through 1/2 along a row
+// of cells: `mine` holds this rank's (coordinate, alpha) pairs, gathered
+// from every rank (collective with distributed fields), sorted, and the last
+// crossing interpolated linearly between centroids; NAN if none.
+double outwardHalfCrossing(const FinalFields& fields, const std::vector<double>& mine);
 // Where the volume fraction of `material` crosses 1/2 along the ray
 // origin + s direction (s >= 0, direction in the x-y plane) through a slab one
 // cell thick on a uniform block mesh: the cell values are interpolated
