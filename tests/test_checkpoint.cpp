@@ -234,5 +234,47 @@ TEST(Checkpoint, AFullDiskEndsTheRunWithOneLineAndTheRecordInStep) {
   std::filesystem::remove_all(dir);
 }
 
+// The snapshots' `plastic_strain` is the cells' mass average of their
+// materials' eps_p (FinalFields::plasticStrain): read back from the last
+// snapshot of a short hardening rod, in both modes (remap: mixed cells of
+// copper and air), it is the run's final field value for value, and zero in
+// the first snapshot.
+TEST(Snapshots, PlasticStrainIsWrittenAsTheCellsMassAverage) {
+  const std::string dir = testing::scratchDir("plastic_strain");
+  for (const char* mode : {"lagrange", "remap"}) {
+    RunOptions options = testing::problemOptions(
+        "rod",
+        std::string(mode) == "lagrange"
+            ? std::vector<std::string>{"mesh.nx=20", "mesh.ny=3", "mesh.nz=3", "t_end=4e-6"}
+            : std::vector<std::string>{"mesh.nx=17", "mesh.ny=5", "mesh.nz=5", "t_end=4e-6"},
+        1.0, mode);
+    options.write_files = true;
+    options.output_dir = dir + "/" + mode;
+    const RunResult result = runProblem(options);
+    ASSERT_FALSE(result.failed) << mode << ": " << result.failure;
+    const auto first =
+        testing::readDoubles(options.output_dir + "/fields_00000.h5", "/fields/plastic_strain");
+    const auto last =
+        testing::readDoubles(options.output_dir + "/fields_00001.h5", "/fields/plastic_strain");
+    const Index cells = Index(result.fields.x_c.extent(0));
+    ASSERT_EQ(Index(first.size()), cells) << mode;
+    ASSERT_EQ(Index(last.size()), cells) << mode;
+    double largest = 0.0;
+    int mixed_and_strained = 0;
+    for (Index c = 0; c < cells; ++c) {
+      EXPECT_EQ(first[std::size_t(c)], 0.0) << mode << " cell " << c;
+      EXPECT_EQ(last[std::size_t(c)], result.fields.plasticStrain(c)) << mode << " cell " << c;
+      largest = std::max(largest, last[std::size_t(c)]);
+      const double alpha = result.fields.alpha(c, 0);
+      if (alpha > 0.0 && alpha < 1.0 && last[std::size_t(c)] > 0.0) ++mixed_and_strained;
+    }
+    EXPECT_GT(largest, 0.02) << mode;
+    if (std::string(mode) == "remap") {
+      EXPECT_GT(mixed_and_strained, 0);
+    }
+  }
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace lagremap

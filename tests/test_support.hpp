@@ -87,6 +87,21 @@ inline std::uint64_t valueOffset(const std::string& path, const char* name, std:
   return offset == HADDR_UNDEF ? 0 : offset + 8 * index;
 }
 
+// The doubles of an HDF5 dataset (`name`, a path in the file), flattened.
+inline std::vector<double> readDoubles(const std::string& path, const char* name) {
+  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  const hid_t dataset = H5Dopen2(file, name, H5P_DEFAULT);
+  const hid_t space = H5Dget_space(dataset);
+  std::vector<double> values(std::size_t(H5Sget_simple_extent_npoints(space)));
+  if (H5Dread(dataset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0) {
+    values.clear();
+  }
+  H5Sclose(space);
+  H5Dclose(dataset);
+  H5Fclose(file);
+  return values;
+}
+
 // A fresh scratch directory for one test.
 inline std::string scratchDir(const std::string& name) {
   const auto dir = std::filesystem::temp_directory_path() /
