@@ -141,6 +141,21 @@ KOKKOS_FORCEINLINE_FUNCTION Vec3Of<Real> zeroVec3() {
   return {Real{}, Real{}, Real{}};
 }
 
+// The limiters' jump across an open side (StencilFace::None: a free,
+// traction or fixed boundary, no value beyond it) is the linear
+// continuation of the field: the opposite face's jump reversed (faces f and
+// f ^ 1 are opposite). With no jump there, a field varying along the
+// boundary normal was limited to first order in every boundary cell (phi = 0
+// for a linear one: its boundary vertices lie beyond every neighbour's
+// value), and the velocity jumps at the node then dissipated the rod's
+// radial flow (docs/method.md §2.3). `open(f)`: face f is an open side.
+template <class Jump, class IsOpen>
+KOKKOS_FORCEINLINE_FUNCTION void continueAcrossOpenSides(const IsOpen& open, Jump jumps[6]) {
+  for (int f = 0; f < 6; ++f) {
+    if (open(f) && !open(f ^ 1)) jumps[f] = -1.0 * jumps[f ^ 1];
+  }
+}
+
 // The face-neighbour stencil of a cell for the reconstruction (docs/method.md §A5):
 // the least-squares normal matrix, the right-hand sides of V and of the
 // pressure (a fluid) or the Cauchy stress (a solid), and the neighbour jumps
@@ -214,6 +229,9 @@ KOKKOS_FORCEINLINE_FUNCTION void gatherStencil(
       st.pb.include(p_cell + dp);
     }
   }
+  const auto open = [&](int f) { return faces[f] == StencilFace::None; };
+  continueAcrossOpenSides(open, st.dv_nb);
+  if (solid) continueAcrossOpenSides(open, st.dsigma_nb);
 }
 
 // Node velocities: the least-squares gradient, limited as a vector by one
@@ -619,13 +637,14 @@ struct StagedCorners {
     const Vec3 grad_v[3] = {inv * rhs_v[0], inv * rhs_v[1], inv * rhs_v[2]};
     // the jumps again, from a second pass (not held through the first)
     Vec3 dv_nb[6];
+    bool open_side[6];
     for (int f = 0; f < 6; ++f) {
       StencilFace face;
       Vec3 dx, normal;
-      if (!across(c, f, nodes, centroid, v_cell, face, dx, dv_nb[f], normal)) {
-        dv_nb[f] = Vec3{0.0, 0.0, 0.0};
-      }
+      open_side[f] = !across(c, f, nodes, centroid, v_cell, face, dx, dv_nb[f], normal);
+      if (open_side[f]) dv_nb[f] = Vec3{0.0, 0.0, 0.0};
     }
+    continueAcrossOpenSides([&](int f) { return open_side[f]; }, dv_nb);
     double longest2 = 0.0;
     const auto vertex = [&](int p, Vec3& direction, double& length2) {
       const Vec3 offset = nodes(p) - centroid;
@@ -749,6 +768,13 @@ struct StagedCorners {
     }
     Vec3 pulled[6];
     for (int f = 0; f < 6; ++f) pulled[f] = loadRowVec3(rows, c, corner_rows::kPulled + 3 * f);
+    // (an open side's jump is the opposite one reversed, and so is its
+    // pulled-back jump, to the bit)
+    continueAcrossOpenSides(
+        [&](int f) {
+          return stencilFace(neighbors, face_side, side_kind, c, f) == StencilFace::None;
+        },
+        pulled);
     const auto vertex = [&](int p, Vec3& direction, double& vertex_length2) {
       direction = nodes(p) - centroid;
       vertex_length2 = length2[p];
