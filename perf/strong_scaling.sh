@@ -10,7 +10,7 @@
 #     OUT_DIR  default: out/strong_scaling (table.md, results.csv, scaling.png)
 #     LAGREMAP ARGS  the problem (default: --problem sedov --scale 1.3333 --t-end 0.15,
 #                    40^3 cells, 292 steps; SCALING_CASE=rod: the 3D Taylor rod,
-#                    --problem rod --t-end 10e-6, 5,184 cells on its body-fitted
+#                    --problem rod --t-end 10e-6, 12,100 cells on its body-fitted
 #                    mesh, its first 10 us)
 #   Environment: SCALING_CASE (sedov or rod, when no LAGREMAP ARGS are given),
 #     SCALING_CONFIGS (default "1x1 1x2 2x1": ranks x threads),
