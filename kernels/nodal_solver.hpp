@@ -637,14 +637,16 @@ struct StagedCorners {
     const Vec3 grad_v[3] = {inv * rhs_v[0], inv * rhs_v[1], inv * rhs_v[2]};
     // the jumps again, from a second pass (not held through the first)
     Vec3 dv_nb[6];
-    bool open_side[6];
+    int open_sides = 0;  // bit f: face f is an open side (one register, not six)
     for (int f = 0; f < 6; ++f) {
       StencilFace face;
       Vec3 dx, normal;
-      open_side[f] = !across(c, f, nodes, centroid, v_cell, face, dx, dv_nb[f], normal);
-      if (open_side[f]) dv_nb[f] = Vec3{0.0, 0.0, 0.0};
+      if (!across(c, f, nodes, centroid, v_cell, face, dx, dv_nb[f], normal)) {
+        dv_nb[f] = Vec3{0.0, 0.0, 0.0};
+        open_sides |= 1 << f;
+      }
     }
-    continueAcrossOpenSides([&](int f) { return open_side[f]; }, dv_nb);
+    continueAcrossOpenSides([open_sides](int f) { return ((open_sides >> f) & 1) != 0; }, dv_nb);
     double longest2 = 0.0;
     const auto vertex = [&](int p, Vec3& direction, double& length2) {
       const Vec3 offset = nodes(p) - centroid;
@@ -758,23 +760,28 @@ struct StagedCorners {
     }
     // the gradients from the row, a face at a time
     const auto gradient = [&](int i) { return loadRowVec3(rows, c, corner_rows::kGradS + 3 * i); };
+    int open_sides = 0;  // bit f: face f is an open side
     for (int f = 0; f < 6; ++f) {
       Vec3 dx;
       const SymMat3 t = jump(f, dx);
+      if (stencilFace(neighbors, face_side, side_kind, c, f) == StencilFace::None) {
+        open_sides |= 1 << f;
+      }
       storeRowVec3(rows, c, corner_rows::kPulled + 3 * f,
                    t.xx * gradient(0) + t.yy * gradient(1) + t.zz * gradient(2) +
                        (2.0 * t.xy) * gradient(3) + (2.0 * t.yz) * gradient(4) +
                        (2.0 * t.xz) * gradient(5));
     }
+    // an open side's jump is the opposite one reversed, and so is its
+    // pulled-back jump, to the bit (continueAcrossOpenSides on the row)
+    for (int f = 0; f < 6; ++f) {
+      if (((open_sides >> f) & 1) != 0 && ((open_sides >> (f ^ 1)) & 1) == 0) {
+        storeRowVec3(rows, c, corner_rows::kPulled + 3 * f,
+                     -1.0 * loadRowVec3(rows, c, corner_rows::kPulled + 3 * (f ^ 1)));
+      }
+    }
     Vec3 pulled[6];
     for (int f = 0; f < 6; ++f) pulled[f] = loadRowVec3(rows, c, corner_rows::kPulled + 3 * f);
-    // (an open side's jump is the opposite one reversed, and so is its
-    // pulled-back jump, to the bit)
-    continueAcrossOpenSides(
-        [&](int f) {
-          return stencilFace(neighbors, face_side, side_kind, c, f) == StencilFace::None;
-        },
-        pulled);
     const auto vertex = [&](int p, Vec3& direction, double& vertex_length2) {
       direction = nodes(p) - centroid;
       vertex_length2 = length2[p];
