@@ -242,12 +242,7 @@ TEST(Checkpoint, AFullDiskEndsTheRunWithOneLineAndTheRecordInStep) {
 TEST(Snapshots, PlasticStrainIsWrittenAsTheCellsMassAverage) {
   const std::string dir = testing::scratchDir("plastic_strain");
   for (const char* mode : {"lagrange", "remap"}) {
-    RunOptions options = testing::problemOptions(
-        "rod",
-        std::string(mode) == "lagrange"
-            ? std::vector<std::string>{"mesh.nx=20", "mesh.ny=3", "mesh.nz=3", "t_end=4e-6"}
-            : std::vector<std::string>{"mesh.nx=17", "mesh.ny=5", "mesh.nz=5", "t_end=4e-6"},
-        1.0, mode);
+    RunOptions options = testing::coarseRodOptions(mode, "4e-6");
     options.write_files = true;
     options.output_dir = dir + "/" + mode;
     const RunResult result = runProblem(options);

@@ -506,12 +506,7 @@ TEST(Rod, BodyFittedMeshIsAQuarterCylinderWithoutDegenerateCells) {
 // checks of the default case say n/a for a shorter run.
 TEST(Rod, CoarseShortRunsConserveAndHarden) {
   for (const char* mode : {"lagrange", "remap"}) {
-    RunOptions options = testing::problemOptions(
-        "rod",
-        std::string(mode) == "lagrange"
-            ? std::vector<std::string>{"mesh.nx=20", "mesh.ny=3", "mesh.nz=3", "t_end=8e-6"}
-            : std::vector<std::string>{"mesh.nx=17", "mesh.ny=5", "mesh.nz=5", "t_end=8e-6"},
-        1.0, mode);
+    const RunOptions options = testing::coarseRodOptions(mode, "8e-6");
     const RunResult result = runProblem(options);
     ASSERT_FALSE(result.failed) << mode << ": " << result.failure;
     std::printf("rod %-8s %4ld steps, %5ld cells: drift mass %.1e, momentum %.1e, energy %.1e\n",

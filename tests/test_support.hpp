@@ -171,6 +171,16 @@ inline RunOptions problemOptions(const std::string& problem,
   return options;
 }
 
+// A coarse, short `rod` (lagrange 20 x 3 x 3, remap 17 x 5 x 5) to `t_end`.
+inline RunOptions coarseRodOptions(const std::string& mode, const std::string& t_end) {
+  const std::vector<std::string> mesh =
+      mode == "lagrange" ? std::vector<std::string>{"mesh.nx=20", "mesh.ny=3", "mesh.nz=3"}
+                         : std::vector<std::string>{"mesh.nx=17", "mesh.ny=5", "mesh.nz=5"};
+  std::vector<std::string> settings = mesh;
+  settings.push_back("t_end=" + t_end);
+  return problemOptions("rod", settings, 1.0, mode);
+}
+
 // Mass per material, x-momentum and energies of a run's state: of a problem's
 // initial cells (the set-up rebuilt, m^k = alpha^k rho^k v as initializeState
 // makes it) or of a run's final fields, summed independently of the audit.
