@@ -932,8 +932,12 @@ static inline void computeCornerTerms(const Mesh& mesh, const State& state,
 
 namespace detail {
 
-// P M P + (I - P): SPD when M is, and its solution with right-hand side P B
-// lies in the range of P and satisfies P (M V - B) = 0 (Lagrange multipliers).
+// P M P + s (I - P), s = tr(M) / 3: SPD when M is, and its solution with
+// right-hand side P B lies in the range of P and satisfies P (M V - B) = 0
+// (Lagrange multipliers) whatever s > 0. s is M's own scale, not 1: an
+// impedance is dimensional, and a near-vacuum node's (1e-16 kg/s in the
+// `ball`'s wake at `--scale 2`) vanished in M + 1 - 1, which left the solver
+// singular, the node's velocity NaN and the cell tangled.
 // A projector onto axis planes or axes (a wall or symmetry plane normal to x,
 // y or z, or two of them) is diagonal, of zeros and ones: P M P keeps the
 // entries of M in the free directions, the same numbers the general product
@@ -942,11 +946,12 @@ KOKKOS_INLINE_FUNCTION bool isAxisProjector(const SymMat3& projector) {
   return projector.xy == 0.0 && projector.yz == 0.0 && projector.xz == 0.0;
 }
 KOKKOS_INLINE_FUNCTION SymMat3 constrainedMatrix(const SymMat3& projector, const SymMat3& m) {
+  const double scale = (m.xx + m.yy + m.zz) * (1.0 / 3.0);
   if (isAxisProjector(projector)) {
     const SymMat3& p = projector;
-    return {(p.xx * m.xx) * p.xx + 1.0 - p.xx,
-            (p.yy * m.yy) * p.yy + 1.0 - p.yy,
-            (p.zz * m.zz) * p.zz + 1.0 - p.zz,
+    return {(p.xx * m.xx) * p.xx + scale * (1.0 - p.xx),
+            (p.yy * m.yy) * p.yy + scale * (1.0 - p.yy),
+            (p.zz * m.zz) * p.zz + scale * (1.0 - p.zz),
             (p.xx * m.xy) * p.yy,
             (p.yy * m.yz) * p.zz,
             (p.xx * m.xz) * p.zz};
@@ -961,7 +966,8 @@ KOKKOS_INLINE_FUNCTION SymMat3 constrainedMatrix(const SymMat3& projector, const
       PM[i][j] = P[i][0] * M[0][j] + P[i][1] * M[1][j] + P[i][2] * M[2][j];
   // (P M P)_ij = (PM)_i . P_j, symmetric: the six entries of one triangle
   auto entry = [&](int i, int j) {
-    return PM[i][0] * P[0][j] + PM[i][1] * P[1][j] + PM[i][2] * P[2][j] + (i == j) - P[i][j];
+    return PM[i][0] * P[0][j] + PM[i][1] * P[1][j] + PM[i][2] * P[2][j] +
+           scale * ((i == j) - P[i][j]);
   };
   return {entry(0, 0), entry(1, 1), entry(2, 2), entry(0, 1), entry(1, 2), entry(0, 2)};
 }

@@ -403,7 +403,7 @@ TEST(NodalSolver, ConstrainedVelocitiesSatisfyPlanesAndTangentialBalance) {
 
 // Axis-plane projectors (walls and symmetry planes normal to x, y, z, alone
 // or two together) take constrainedMatrix's and project's shortcut: the same
-// numbers as P M P + (I - P) and P v multiplied out in full.
+// numbers as P M P + s (I - P) (s = tr(M) / 3) and P v multiplied out in full.
 TEST(NodalSolver, AxisProjectorShortcutGivesTheFullProduct) {
   for (int trial = 0; trial < 50; ++trial) {
     const SymMat3 m = randomSpd();
@@ -424,13 +424,34 @@ TEST(NodalSolver, AxisProjectorShortcutGivesTheFullProduct) {
             for (int l = 0; l < 3; ++l) {
               pmp += (i == k ? free[i] : 0.0) * full[k][l] * (l == j ? free[j] : 0.0);
             }
-          const double expected = pmp + (i == j) - (i == j ? free[i] : 0.0);
+          const double scale = (m.xx + m.yy + m.zz) * (1.0 / 3.0);
+          const double expected = pmp + scale * ((i == j) - (i == j ? free[i] : 0.0));
           EXPECT_EQ(got[i][j], expected) << "mask " << mask << " entry " << i << j;
         }
       const Vec3 projected = detail::project(projector, v);
       EXPECT_EQ(projected.x, free[0] * v.x);
       EXPECT_EQ(projected.y, free[1] * v.y);
       EXPECT_EQ(projected.z, free[2] * v.z);
+    }
+  }
+}
+
+// An impedance is dimensional: a node of near-vacuum (M ~ 1e-16 kg/s, the
+// `ball`'s wake at `--scale 2`) or of a very stiff material must give the
+// velocity of the same node in other units. With I - P added unscaled,
+// M + 1 - 1 lost the small M's free entries (NaN velocities, a tangled cell).
+TEST(NodalSolver, ConstrainedVelocityDoesNotDependOnTheImpedanceUnits) {
+  for (int trial = 0; trial < 100; ++trial) {
+    const SymMat3 m = randomSpd();
+    const Vec3 b = randomVec(3.0);
+    const Vec3 normals[3] = {Vec3{0, 0, 1}, randomVec(1.0), Vec3{1, 0, 0}};
+    for (int planes = 1; planes <= 2; ++planes) {
+      const Vec3 reference = constrainedVelocity(m, b, normals, planes);
+      for (const double units : {1e-18, 1e-9, 1e9, 1e18}) {
+        const Vec3 v = constrainedVelocity(units * m, units * b, normals, planes);
+        EXPECT_LT(norm(v - reference), 1e-10 * (norm(reference) + 1.0))
+            << "units " << units << ", planes " << planes;
+      }
     }
   }
 }
