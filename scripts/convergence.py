@@ -98,6 +98,7 @@ EXIT_RUN_FAILED = 3
 L1_FIELDS = ("density", "velocity", "pressure")
 GCI_SAFETY_FACTOR = 1.25  # Roache's, for three or more grids
 VANISHING_CHANGE = 1e-12  # a change below this fraction of the value is none
+ROUND_OFF_CHECK = 1e-9  # a check this small at every scale (a symmetry error) is not plotted
 RECORD = "convergence_run.json"  # the command line a run directory was made with
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -213,7 +214,7 @@ class Run:
     scale: Optional[float]
     directory: str
     summary: dict
-    note: str = ""  # "reused", "made outside the script", ...
+    note: str = "ran"  # or "reused", "read", ...
 
     @property
     def cells(self) -> int:
@@ -340,7 +341,7 @@ def read_scale(root: str, scale: float) -> Run:
     if summary is None:
         raise StudyError(f"--table-only: no run at scale {scale_text(scale)} "
                          f"({directory}/summary.json is missing)", EXIT_BAD_INPUT)
-    return Run(scale, directory, summary)
+    return Run(scale, directory, summary, "read")
 
 
 def note(message: str) -> None:
@@ -422,7 +423,7 @@ def check_table(runs: List[Run], h: List[float]
     for name in names:
         values = [checks_of(r.summary).get(name, {}).get("value") for r in runs]
         reference = checks_of(fine.summary).get(name, {})
-        ref_text = fmt(reference.get("reference"))
+        ref_text = fmt(reference.get("reference"), ".6g")
         if reference.get("applies") is False:
             ref_text += " (n/a)"
         changes = [fmt(b - a, ".3g") if a is not None and b is not None else "n/a"
@@ -489,7 +490,7 @@ def sweep_table(directories: List[str], wall: bool) -> List[str]:
 # Plot
 # --------------------------------------------------------------------------
 
-def plot(path: str, title: str, h: List[float], curves: List[Tuple[str, List[float], List[float]]],
+def plot(path: str, title: str, curves: List[Tuple[str, List[float], List[float]]],
          ylabel: str) -> bool:
     """Log-log curves (label, h, values) with slope-1 and slope-2 guides
     through the finest point of the first curve; False when matplotlib is
@@ -511,7 +512,7 @@ def plot(path: str, title: str, h: List[float], curves: List[Tuple[str, List[flo
     for label, xs, ys in curves:
         ax.loglog(xs, ys, "o-", label=label)
     x0, y0 = curves[0][1][-1], curves[0][2][-1]
-    span = [min(h), max(h)]
+    span = [min(min(c[1]) for c in curves), max(max(c[1]) for c in curves)]
     for slope, style in ((1, "k:"), (2, "k--")):
         ax.loglog(span, [y0 * (x / x0) ** slope for x in span], style, lw=0.8,
                   label=f"slope {slope}")
@@ -630,6 +631,58 @@ def judge(bounds: List[Tuple[str, float]], orders: Dict[str, List[Optional[float
     return None
 
 
+@dataclass
+class Section:
+    """A study's table and what goes with it: each quantity's orders (by pair
+    or triple, coarse to fine) with the labels of those pairs or triples,
+    and the plot's curves (label, h, values) and y label."""
+    lines: List[str]
+    orders: Dict[str, List[Optional[float]]]
+    labels: List[str]
+    curves: List[Tuple[str, List[float], List[Optional[float]]]]
+    what: str
+    ylabel: str
+
+
+def exact_section(runs: List[Run], h: List[float], errors: List[dict], wall: bool) -> Section:
+    table, orders = error_table(runs, h, errors, wall)
+    lines = ["L1 error against the exact solution; order: the observed order between the row "
+             "and the row above, ln(e_coarse/e_fine)/ln(h_coarse/h_fine).", ""] + table
+    labels = [f"between scales {scale_text(a.scale)} and {scale_text(b.scale)}"
+              for a, b in zip(runs, runs[1:])]
+    curves = []
+    for name in L1_FIELDS:
+        values = [e[name] for e in errors]
+        if any(v is not None for v in values):
+            last = orders[name][-1] if orders[name] else None
+            curves.append((f"L1 {name} (finest order {fmt(last, '.2f')})", h, values))
+    return Section(lines, orders, labels, curves, "L1 error against the exact solution",
+                   "L1 error")
+
+
+def checks_section(runs: List[Run], h: List[float], wall: bool) -> Section:
+    table, triples = check_table(runs, h)
+    lines = ["Each check at each scale S (FAIL: the check failed there), its change between "
+             "successive scales, and from the finest three: the observed order p (Celik et al. "
+             "2008), Richardson's extrapolated value f_ext and Roache's GCI_fine (safety "
+             "factor 1.25).", ""] + runs_table(runs, h, wall) + [""] + table
+    orders = {name: [t.order for t in ts] for name, ts in triples.items()}
+    labels = [f"from scales {', '.join(scale_text(r.scale) for r in runs[i:i + 3])}"
+              for i in range(len(runs) - 2)]
+    curves = []
+    for name, ts in triples.items():
+        values = [checks_of(r.summary).get(name, {}).get("value") for r in runs]
+        if all(v is None or abs(v) < ROUND_OFF_CHECK for v in values):
+            note(f"{name} is at round-off at every scale: left out of the plot")
+            continue
+        changes = [abs(b - a) / abs(b) if a is not None and b is not None and b != 0 else None
+                   for a, b in zip(values, values[1:])]
+        curves.append((f"{name} (p {ts[-1].order_text() if ts else 'n/a'})", h[1:], changes))
+    return Section(lines, orders, labels, curves,
+                   "change of each check between successive scales",
+                   "|f_coarse - f_fine| / |f_fine|")
+
+
 def study(args: argparse.Namespace) -> int:
     if args.table_only:
         runs = [read_scale(args.output, s) for s in args.scales]
@@ -644,55 +697,26 @@ def study(args: argparse.Namespace) -> int:
     h = cell_sizes(runs, dim)
     problem = runs[-1].summary.get("problem", args.problem)
     mode = runs[-1].summary.get("mode", args.mode or "")
-    title = f"`{problem}` ({mode}), scales {', '.join(scale_text(s) for s in args.scales)}"
-    if args.passthrough:
-        title += f", `{' '.join(args.passthrough)}`"
-    lines = [f"### Convergence: {title}", "",
-             f"h = cells^(-1/{dim}) ({dim} refined direction{'s' if dim > 1 else ''}).", ""]
     errors = [l1_errors(r.summary) for r in runs]
-    png = os.path.join(args.output, "convergence.png")
-    plot_title = f"{problem} ({mode})"
     if all(e is not None for e in errors):
-        table, orders = error_table(runs, h, errors, args.wall)
-        lines += ["L1 error against the exact solution; order: observed order between the row "
-                  "and the row above, ln(e_coarse/e_fine)/ln(h_coarse/h_fine).", ""] + table
-        labels = [f"between scales {scale_text(a.scale)} and {scale_text(b.scale)}"
-                  for a, b in zip(runs, runs[1:])]
-        curves = []
-        for name in L1_FIELDS:
-            values = [e[name] for e in errors]
-            if any(v is not None for v in values):
-                last = orders[name][-1] if orders[name] else None
-                curves.append((f"L1 {name} (finest order {fmt(last, '.2f')})", h, values))
-        drawn = plot(png, plot_title + ": L1 error against the exact solution", h, curves,
-                     "L1 error")
+        section = exact_section(runs, h, errors, args.wall)
     else:
         if any(e is not None for e in errors):
             note("some runs have L1 errors and some not: tabulating the checks")
-        table, triples = check_table(runs, h)
-        lines += ["Each check at each scale S (FAIL: the check failed there), the change "
-                  "between successive scales, and from the finest three: observed order p "
-                  "(Celik et al. 2008), Richardson's extrapolated value f_ext and Roache's "
-                  "GCI_fine (safety factor 1.25).", ""]
-        lines += runs_table(runs, h, args.wall) + [""] + table
-        orders = {name: [t.order for t in ts] for name, ts in triples.items()}
-        labels = [f"from scales {', '.join(scale_text(r.scale) for r in runs[i:i + 3])}"
-                  for i in range(len(runs) - 2)]
-        curves = []
-        for name in triples:
-            values = [checks_of(r.summary).get(name, {}).get("value") for r in runs]
-            rel = [abs(b - a) / abs(b) if a is not None and b is not None and b != 0 else None
-                   for a, b in zip(values, values[1:])]
-            curves.append((name, h[1:], rel))
-        drawn = plot(png, plot_title + ": change of each check between successive scales",
-                     h, curves, "|f_coarse - f_fine| / |f_fine|")
-    text = "\n".join(lines) + "\n"
+        section = checks_section(runs, h, args.wall)
+    title = f"**`{problem}` ({mode})**, scales {', '.join(scale_text(s) for s in args.scales)}"
+    if args.passthrough:
+        title += f", `{' '.join(args.passthrough)}`"
+    text = "\n".join([title + f"; h = cells^(-1/{dim}) ({dim} refined "
+                      f"direction{'s' if dim > 1 else ''}).", ""] + section.lines) + "\n"
     print(text, end="")
     os.makedirs(args.output, exist_ok=True)
     with open(os.path.join(args.output, "convergence.md"), "w") as f:
         f.write(text)
+    png = os.path.join(args.output, "convergence.png")
+    drawn = plot(png, f"{problem} ({mode}): {section.what}", section.curves, section.ylabel)
     note(f"wrote {os.path.join(args.output, 'convergence.md')}" + (f" and {png}" if drawn else ""))
-    failure = judge(args.bounds, orders, labels, args.finest_only)
+    failure = judge(args.bounds, section.orders, section.labels, args.finest_only)
     if failure:
         print(f"convergence: {problem} ({mode}): {failure}", file=sys.stderr)
         return EXIT_ORDER_BELOW
