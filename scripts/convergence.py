@@ -20,14 +20,14 @@ is); ``--table-only`` runs nothing and reads the runs already there.  A run
 whose checks fail (lagremap's exit code 1) is still tabulated, marked; one
 that fails mid-way (3) or is refused (2) stops the study with one line.
 
-Cell size: h = cells^(-1/d), with d the number of refined directions
-(directions with more than one cell; found from how the cell count grows
-between the coarsest and the finest scale, or given with --dim).  It is
-the cell length in units of the domain's extent along a refined direction
-(for a domain of equal extents; the geometric mean over the d directions
-otherwise): 1/200 for sod's 200-cell unit tube.  Only ratios of h enter the
-orders below, and they follow from the cell counts actually built (a scaled
-count is rounded to a whole number of cells).
+Cell size: h = cells^(-1/d), d the number of refined directions: the mesh
+axes of more than one cell (mesh.nx, mesh.ny, mesh.nz of summary.json's
+configuration; --scale refines only those), or --dim.  On a block of n_i
+cells along its d refined axes, h is the geometric mean of the 1/n_i: the
+cell length in units of the domain's extent along each axis (1/200 for
+sod's 200-cell unit tube).  Only ratios of h enter the orders below, and
+they follow from the cell counts actually built (a scaled count is rounded
+to a whole number of cells).
 
 Two kinds of table, chosen by what summary.json holds:
 
@@ -64,7 +64,7 @@ its value |f_coarse - f_fine| / |f_fine| at the finer run's h, against h,
 with slopes 1 and 2 for reference); notes and progress on stderr.
 
 ``--sweep RUN_DIR...`` runs nothing: it prints one table of every run named
-(problem, mode, cells, steps, optionally wall seconds, exit status, then each
+(problem, mode, mesh, cells, steps, optionally wall seconds, status, then each
 check's value, reference, tolerance and result), e.g. for a whole set of
 runs at --scale 2.
 
@@ -352,9 +352,22 @@ def note(message: str) -> None:
 # Cell size
 # --------------------------------------------------------------------------
 
+def mesh_axes(summary: dict) -> Optional[List[int]]:
+    """The cell counts along x, y, z from summary.json's configuration."""
+    config = summary.get("config", {})
+    try:
+        return [int(config[f"mesh.n{axis}"]) for axis in "xyz"]
+    except (KeyError, TypeError, ValueError):
+        return None
+
+
 def refined_directions(runs: List[Run]) -> int:
-    """d from how the cell count grows with the scale (N ~ S^d): the
-    coarsest and finest runs' counts, rounded to 1, 2 or 3."""
+    """d: the mesh axes of more than one cell (--scale refines those only),
+    or, without mesh keys, how the cell count grows with the scale
+    (N ~ S^d, the coarsest and finest runs), rounded to 1, 2 or 3."""
+    axes = mesh_axes(runs[-1].summary)
+    if axes is not None:
+        return max(1, sum(1 for n in axes if n > 1))
     coarse, fine = runs[0], runs[-1]
     if coarse.scale is None or fine.scale is None or coarse.scale == fine.scale \
             or coarse.cells <= 0 or fine.cells <= 0:
@@ -459,7 +472,7 @@ def runs_table(runs: List[Run], h: List[float], wall: bool) -> List[str]:
 
 def sweep_table(directories: List[str], wall: bool) -> List[str]:
     """One row per check of every run; the run's columns on its first row."""
-    header = ["problem", "mode", "cells", "steps"] + (["wall s"] if wall else []) + \
+    header = ["problem", "mode", "mesh", "cells", "steps"] + (["wall s"] if wall else []) + \
         ["status", "check", "value", "reference", "tolerance", "result"]
     rows = []
     for directory in directories:
@@ -470,8 +483,10 @@ def sweep_table(directories: List[str], wall: bool) -> List[str]:
         status = summary.get("status", "n/a")
         if status == "completed":
             status = "checks fail" if run.failed_checks() else "pass"
+        axes = mesh_axes(summary)
         lead = [str(summary.get("problem", directory)), str(summary.get("mode", "n/a")),
-                str(run.cells), str(summary.get("steps", "n/a"))] + \
+                " x ".join(map(str, axes)) if axes else "n/a", str(run.cells),
+                str(summary.get("steps", "n/a"))] + \
             ([wall_text(run)] if wall else []) + [status]
         blank = [""] * len(lead)
         checks = checks_of(summary)

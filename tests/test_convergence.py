@@ -48,10 +48,15 @@ def run_main(*args):
     return status, out.getvalue(), err.getvalue()
 
 
-def write_run(directory, cells, checks=None, l1=None, steps=10):
+def write_run(directory, cells, checks=None, l1=None, steps=10, mesh=None):
+    """A summary.json; with mesh (nx, ny, nz) its configuration holds the
+    mesh keys, from which the script counts the refined directions (without,
+    from how the cell count grows with the scale)."""
     os.makedirs(directory, exist_ok=True)
     summary = {"problem": "synthetic", "mode": "lagrange", "cells": cells, "steps": steps,
                "status": "completed", "wall_seconds": 0.5, "checks": checks or {}}
+    if mesh is not None:
+        summary["config"] = {f"mesh.n{axis}": str(n) for axis, n in zip("xyz", mesh)}
     if l1 is not None:
         summary["l1_errors"] = dict(l1, note="synthetic")
     with open(os.path.join(directory, "summary.json"), "w") as f:
@@ -131,7 +136,7 @@ class Tables(unittest.TestCase):
         # 1D: cells 50, 100, 200; density second order, pressure first.
         for scale, cells in ((0.25, 50), (0.5, 100), (1, 200)):
             h = 1.0 / cells
-            write_run(os.path.join(self.root, f"scale_{scale:g}"), cells,
+            write_run(os.path.join(self.root, f"scale_{scale:g}"), cells, mesh=(cells, 1, 1),
                       l1={"density": 3 * h ** 2, "velocity": 2 * h, "pressure": None})
         status, out, err = run_main("synthetic", "--scales", "0.25,0.5,1", "--output", self.root,
                                     "--table-only", "--wall", "--require-order", "density=1.9")
@@ -245,8 +250,8 @@ class CommandLine(unittest.TestCase):
         status, out, err = self.command("--sweep", os.path.join(root, "scale_0.05"),
                                         os.path.join(root, "scale_0.1"), "--wall")
         self.assertEqual(status, 0, err)
-        self.assertIn("| sod | lagrange | 10 |", out)
-        self.assertIn("| sod | lagrange | 20 |", out)
+        self.assertIn("| sod | lagrange | 10 x 1 x 1 | 10 |", out)
+        self.assertIn("| sod | lagrange | 20 x 1 x 1 | 20 |", out)
         self.assertIn("l1_density", out)
 
 
