@@ -391,7 +391,18 @@ def markdown(header: List[str], rows: List[List[str]]) -> List[str]:
 
 
 def wall_text(run: Run) -> str:
-    return fmt(run.summary.get("wall_seconds"), ".3g")
+    """The run's wall seconds; for a run continued with --restart, whose
+    summary.json times only the last piece, the steps that piece ran
+    (cell-steps per second x wall seconds / cells) against the run's."""
+    wall = run.summary.get("wall_seconds")
+    text = fmt(wall, ".3g")
+    rate = run.summary.get("cell_steps_per_second", {}).get("total")
+    steps = run.summary.get("steps")
+    if wall and rate and steps and run.cells:
+        steps_run = round(rate * wall / run.cells)
+        if steps_run < steps:
+            text += f" (last piece: {steps_run} of {steps} steps)"
+    return text
 
 
 def error_table(runs: List[Run], h: List[float], errors: List[dict], wall: bool
@@ -585,14 +596,18 @@ def parse(argv: List[str]) -> argparse.Namespace:
     if "--" in argv:
         cut = argv.index("--")
         argv, passthrough = argv[:cut], argv[cut + 1:]
-    parser = Parser(prog="convergence.py", description=__doc__.split("\n\n")[0],
+    usage = __doc__.split("Usage:\n")[1].split("\n\n")[0]
+    parser = Parser(prog="convergence.py", usage="\n" + usage,
+                    description=__doc__.split("\n\n")[0],
                     formatter_class=argparse.RawDescriptionHelpFormatter,
                     epilog="Everything after -- goes to lagremap.  More: the module's docstring "
                            "and docs/running.md.")
     parser.add_argument("problem", nargs="?", help="problem name (lagremap --list)")
-    parser.add_argument("--mode", choices=["lagrange", "remap"], help="passed to lagremap")
+    parser.add_argument("--mode", choices=["lagrange", "remap"],
+                        help="passed to lagremap (default: lagremap's)")
     parser.add_argument("--scales", default="0.5,1,2", help="comma-separated (default 0.5,1,2)")
-    parser.add_argument("--output", help="root of the runs (default out/convergence/PROBLEM[_MODE])")
+    parser.add_argument("--output",
+                        help="root of the runs (default out/convergence/PROBLEM[_MODE])")
     parser.add_argument("--lagremap", default=os.path.join(REPO, "build", "lagremap"),
                         help="the binary (default build/lagremap)")
     parser.add_argument("--force", action="store_true", help="rerun runs that are already there")
@@ -600,7 +615,8 @@ def parse(argv: List[str]) -> argparse.Namespace:
                         help="run nothing: tabulate the runs already in the output root")
     parser.add_argument("--wall", action="store_true", help="add each run's wall seconds")
     parser.add_argument("--dim", type=int, choices=[1, 2, 3],
-                        help="refined directions d of h = cells^(-1/d) (default: from the counts)")
+                        help="refined directions d of h = cells^(-1/d) (default: the mesh axes of "
+                             "more than one cell)")
     parser.add_argument("--require-order", action="append", default=[], metavar="NAME=MIN",
                         help="exit 1 when NAME's observed order is below MIN (repeatable)")
     parser.add_argument("--finest-only", action="store_true",

@@ -190,6 +190,32 @@ class Tables(unittest.TestCase):
         self.assertEqual(status, 1)
         self.assertIn("wiggle: observed order n/a from scales 0.5, 1, 2 is below 0.5", err)
 
+    def test_sweep_and_a_restarted_runs_wall_time(self):
+        # summary.json of a run continued with --restart times its last piece:
+        # 100 cells x 300 steps in 2 s of 400 steps in all.
+        restarted = os.path.join(self.root, "restarted")
+        write_run(restarted, 100, mesh=(100, 1, 1), steps=400, checks={
+            "length": {"value": 4.6, "reference": 4.62, "tolerance": 0.05, "applies": True,
+                       "pass": True},
+            "speed": {"value": 3.0, "reference": 0.0, "tolerance": 1.0, "applies": True,
+                      "pass": False},
+            "radius": {"value": 1.0, "reference": 2.0, "tolerance": 0.1, "applies": False,
+                       "pass": False}})
+        with open(os.path.join(restarted, "summary.json")) as f:
+            summary = json.load(f)
+        summary.update(wall_seconds=2.0, cell_steps_per_second={"total": 100 * 300 / 2.0})
+        with open(os.path.join(restarted, "summary.json"), "w") as f:
+            json.dump(summary, f)
+        status, out, err = run_main("--sweep", restarted, "--wall")
+        self.assertEqual(status, 0, err)
+        self.assertIn("| synthetic | lagrange | 100 x 1 x 1 | 100 | 400 | 2 (last piece: 300 of "
+                      "400 steps) | checks fail | length | 4.6 | 4.62 | 0.05 | pass |", out)
+        self.assertIn("| speed | 3 | 0 | 1 | FAIL |", out)
+        self.assertIn("| radius | 1 | 2 | 0.1 | n/a |", out)
+        status, _, err = run_main("--sweep", os.path.join(self.root, "nothing"))
+        self.assertEqual(status, 2)
+        self.assertIn("holds no summary.json", err)
+
     def test_bad_scales_and_missing_runs(self):
         for scales in ("1", "0,1", "a,b", "1,1,2", "-1,2"):
             status, _, err = run_main("sod", "--scales", scales, "--table-only",
