@@ -283,9 +283,10 @@ TEST(RemapProblems, TaylorMixedCellsAreNotStretched) {
 
 // The ball's first microsecond (37 x 50): no aluminium of a mixed cell is
 // in GPa tension (aluminium spalls near -1 GPa; before the fix above, -7.2
-// GPa). The stretched fraction itself is not asserted: the ball's hot
-// aluminium in near-vacuum mixed cells still expands thermally at zero
-// pressure (docs/method.md §4.9).
+// GPa). The check itself is not asserted: at this size and time 4 of the
+// ball's 140 mixed cells and 2 of the plate's 254 lie below their pure cells'
+// lowest pressure (to -0.44 GPa), above the 1% that the paper's resolution
+// meets at t_end (docs/method.md §4.9).
 TEST(RemapProblems, BallMixedCellsAreNotInTension) {
   const RunResult result =
       runAndCheckRemap("ball", {"geometry.thickness=1e-4", "t_end=1e-6"}, 0.25);
@@ -293,8 +294,9 @@ TEST(RemapProblems, BallMixedCellsAreNotInTension) {
   ASSERT_TRUE(result.mixed_cells.has_value());
   for (const MaterialMixedCells& m : result.mixed_cells->materials) {
     if (!m.condensed) continue;
-    std::printf("ball: material %d: %ld of %ld mixed cells stretched, p %.3g .. %.3g Pa\n",
-                m.material, m.stretched, m.mixed_cells, m.p_mixed_lo, m.p_mixed_hi);
+    std::printf(
+        "ball: material %d: %ld of %ld mixed cells stretched, %ld expanded, p %.3g .. %.3g Pa\n",
+        m.material, m.stretched, m.mixed_cells, m.expanded, m.p_mixed_lo, m.p_mixed_hi);
     EXPECT_GT(m.p_mixed_lo, -1e9) << "material " << m.material;
   }
 }
