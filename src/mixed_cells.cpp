@@ -116,19 +116,22 @@ MixedCellReport measureMixedCells(const FinalFields& fields,
       if (fields.alpha(c, k) > kPureAlpha) return true;
     return false;
   };
+  auto mixed = [&](Index c, int k) {
+    return fields.alpha(c, k) >= kMixedAlphaLow && fields.alpha(c, k) <= 1.0 - kMixedAlphaLow;
+  };
+  Range pure_p_all;  // every material's pure cells
   for (int k = 0; k < n_materials; ++k) {
     MaterialMixedCells m;
     m.material = k;
     m.condensed = isCondensed(materials[std::size_t(k)]);
     std::vector<double> pure_density;
-    Range pure_p, mixed_p;
+    Range pure_p_k, mixed_p;
     for (Index c = 0; c < n_cells; ++c) {
       if (!fields.counts(c)) continue;
-      const double alpha = fields.alpha(c, k);
-      if (alpha > kPureAlpha) {
+      if (fields.alpha(c, k) > kPureAlpha) {
         pure_density.push_back(density(c, k));
-        pure_p.include(fields.p_k(c, k));
-      } else if (alpha >= kMixedAlphaLow && alpha <= 1.0 - kMixedAlphaLow) {
+        pure_p_k.include(fields.p_k(c, k));
+      } else if (mixed(c, k)) {
         mixed_p.include(fields.p_k(c, k));
         ++m.mixed_cells;
       }
@@ -136,25 +139,42 @@ MixedCellReport measureMixedCells(const FinalFields& fields,
     m.pure_cells = countOverRanks(long(pure_density.size()), distributed);
     m.mixed_cells = countOverRanks(m.mixed_cells, distributed);
     m.rho_pure_median = medianOverRanks(pure_density, distributed);
-    pure_p.overRanks(distributed);
+    pure_p_k.overRanks(distributed);
     mixed_p.overRanks(distributed);
-    m.p_pure_lo = pure_p.empty() ? 0.0 : pure_p.lo;
-    m.p_pure_hi = pure_p.empty() ? 0.0 : pure_p.hi;
+    m.p_pure_lo = pure_p_k.empty() ? 0.0 : pure_p_k.lo;
+    m.p_pure_hi = pure_p_k.empty() ? 0.0 : pure_p_k.hi;
     m.p_mixed_lo = mixed_p.empty() ? 0.0 : mixed_p.lo;
     m.p_mixed_hi = mixed_p.empty() ? 0.0 : mixed_p.hi;
-    // (without pure cells there is nothing to compare a mixed cell with)
-    if (m.pure_cells > 0) {
-      for (Index c = 0; c < n_cells; ++c) {
-        const double alpha = fields.alpha(c, k);
-        if (!fields.counts(c) || !(alpha >= kMixedAlphaLow && alpha <= 1.0 - kMixedAlphaLow))
-          continue;
-        m.stretched += density(c, k) < (1.0 - kStretchFraction) * m.rho_pure_median;
-        m.pressure_outliers += pure_p.outside(fields.p_k(c, k), 1.0);
-      }
-      m.stretched = countOverRanks(m.stretched, distributed);
-      m.pressure_outliers = countOverRanks(m.pressure_outliers, distributed);
+    if (!pure_p_k.empty()) {
+      pure_p_all.include(pure_p_k.lo);
+      pure_p_all.include(pure_p_k.hi);
     }
     report.materials.push_back(m);
+  }
+  report.p_pure_all_lo = pure_p_all.empty() ? 0.0 : pure_p_all.lo;
+  report.p_pure_all_hi = pure_p_all.empty() ? 0.0 : pure_p_all.hi;
+  for (int k = 0; k < n_materials; ++k) {
+    MaterialMixedCells& m = report.materials[std::size_t(k)];
+    const double rho_expanded = (1.0 - kStretchFraction) * m.rho_pure_median;
+    // Tension, not heat (docs/method.md §4.9): a stretched material is below
+    // its pure cells' lowest pressure as well as below 0.
+    const double p_stretched = std::min(m.p_pure_lo, 0.0);
+    for (Index c = 0; c < n_cells; ++c) {
+      if (!fields.counts(c) || !mixed(c, k)) continue;
+      const double p = fields.p_k(c, k);
+      // (without pure cells there is no density to compare a mixed cell's with)
+      if (m.pure_cells > 0 && density(c, k) < rho_expanded) {
+        const bool in_tension = p < p_stretched;
+        m.stretched += in_tension;
+        m.expanded += !in_tension;
+      }
+      // Against every material's pure cells: a contact's pressure that only
+      // the other body's pure cells reach is no outlier (docs/method.md §4.9).
+      if (!pure_p_all.empty()) m.pressure_outliers += pure_p_all.outside(p, 1.0);
+    }
+    m.stretched = countOverRanks(m.stretched, distributed);
+    m.expanded = countOverRanks(m.expanded, distributed);
+    m.pressure_outliers = countOverRanks(m.pressure_outliers, distributed);
   }
   Range pure_mixture;
   for (Index c = 0; c < n_cells; ++c) {
@@ -180,8 +200,10 @@ Check mixedCellsCheck(const MixedCellReport& report) {
   Check check("mixed_cells", worst, 0.0, kMixedCellFractionBound,
               "largest fraction of mixed cells out of their material's pure state (" + what +
                   "): each condensed material's stretched (density 2% below its pure cells' "
-                  "median) and pressure outliers, and the mixture pressure outliers of the cells "
-                  "not pure (docs/method.md §4.9)");
+                  "median at a pressure below their lowest and below 0: in tension; the "
+                  "expanded, hot at a higher pressure, are not counted) and pressure outliers "
+                  "(against every material's pure cells), and the mixture pressure outliers of "
+                  "the cells not pure (docs/method.md §4.9)");
   check.source = "mixed-cell state";
   return check;
 }
@@ -192,12 +214,15 @@ std::string mixedCellsLine(const MixedCellReport& report) {
   for (const auto& m : report.materials) {
     if (!m.condensed) continue;
     std::snprintf(text, sizeof text,
-                  " material %d: %ld of %ld stretched, %ld p outliers, p %.3g .. %.3g GPa (pure "
-                  "%.3g .. %.3g);",
-                  m.material, m.stretched, m.mixed_cells, m.pressure_outliers, m.p_mixed_lo / 1e9,
-                  m.p_mixed_hi / 1e9, m.p_pure_lo / 1e9, m.p_pure_hi / 1e9);
+                  " material %d: %ld of %ld stretched, %ld expanded, %ld p outliers, p %.3g .. "
+                  "%.3g GPa (pure %.3g .. %.3g);",
+                  m.material, m.stretched, m.mixed_cells, m.expanded, m.pressure_outliers,
+                  m.p_mixed_lo / 1e9, m.p_mixed_hi / 1e9, m.p_pure_lo / 1e9, m.p_pure_hi / 1e9);
     line += text;
   }
+  std::snprintf(text, sizeof text, " pure p of all materials %.3g .. %.3g GPa;",
+                report.p_pure_all_lo / 1e9, report.p_pure_all_hi / 1e9);
+  line += text;
   std::snprintf(text, sizeof text, " mixture p: %ld of %ld not pure outside",
                 report.mixture_pressure_outliers, report.impure_cells);
   return line + text;

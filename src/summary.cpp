@@ -138,6 +138,7 @@ void writeMixedCells(JsonWriter& json, const RunResult& result) {
         .value("mixed_cells", m.mixed_cells)
         .value("pure_cells", m.pure_cells)
         .value("stretched", m.stretched)
+        .value("expanded", m.expanded)
         .value("pressure_outliers", m.pressure_outliers)
         .value("material_pressure_min", m.p_mixed_lo)
         .value("material_pressure_max", m.p_mixed_hi)
@@ -146,14 +147,19 @@ void writeMixedCells(JsonWriter& json, const RunResult& result) {
         .value("pure_density_median", m.rho_pure_median)
         .endObject();
   }
-  json.value("impure_cells", report.impure_cells)
+  json.value("pure_pressure_min_all_materials", report.p_pure_all_lo)
+      .value("pure_pressure_max_all_materials", report.p_pure_all_hi)
+      .value("impure_cells", report.impure_cells)
       .value("mixture_pressure_outliers", report.mixture_pressure_outliers)
       .value("note",
-             "mixed: 0.01 <= alpha <= 0.99, pure: alpha > 0.999; stretched: material density "
-             "below 0.98 of its pure cells' median; pressure outlier: material pressure outside "
-             "[min(p_pure_min, 0) - M, p_pure_max + M], M = max |p| of its pure cells; mixture: "
-             "cells pure in no material with p outside the pure cells' mixture range widened "
-             "by M/2 (docs/method.md 4.9)")
+             "mixed: 0.01 <= alpha <= 0.99, pure: alpha > 0.999; stretched (fails the check): "
+             "material density below 0.98 of its pure cells' median and material pressure below "
+             "both its pure cells' lowest and 0; expanded (reported, not failed): that density "
+             "at a higher pressure; pressure outlier: material pressure outside "
+             "[min(lo, 0) - M, hi + M], lo .. hi the pressures of every material's pure cells "
+             "(pure_pressure_min_all_materials .. max), M = max(|lo|, |hi|); mixture: cells pure "
+             "in no material with p outside the pure cells' mixture range widened by M/2 "
+             "(docs/method.md 4.9)")
       .endObject();
 }
 

@@ -520,6 +520,28 @@ TEST(Checks, FromOwnedCellsAreTheSingleRankChecks) {
       EXPECT_EQ(decomposed.interfaces[k].area, reference.interfaces[k].area);
       EXPECT_EQ(decomposed.interfaces[k].smeared_width, reference.interfaces[k].smeared_width);
     }
+    // The mixed cells' counts, medians and pressure ranges (docs/method.md §4.9).
+    ASSERT_EQ(decomposed.mixed_cells.has_value(), reference.mixed_cells.has_value());
+    if (reference.mixed_cells) {
+      const MixedCellReport& mixed = *decomposed.mixed_cells;
+      const MixedCellReport& mixed_one = *reference.mixed_cells;
+      EXPECT_EQ(mixed.p_pure_all_lo, mixed_one.p_pure_all_lo) << c.run.problem;
+      EXPECT_EQ(mixed.p_pure_all_hi, mixed_one.p_pure_all_hi) << c.run.problem;
+      EXPECT_EQ(mixed.impure_cells, mixed_one.impure_cells) << c.run.problem;
+      EXPECT_EQ(mixed.mixture_pressure_outliers, mixed_one.mixture_pressure_outliers);
+      ASSERT_EQ(mixed.materials.size(), mixed_one.materials.size()) << c.run.problem;
+      for (std::size_t k = 0; k < mixed_one.materials.size(); ++k) {
+        const MaterialMixedCells &m = mixed.materials[k], &m_one = mixed_one.materials[k];
+        EXPECT_EQ(m.mixed_cells, m_one.mixed_cells) << c.run.problem << " material " << k;
+        EXPECT_EQ(m.pure_cells, m_one.pure_cells) << c.run.problem << " material " << k;
+        EXPECT_EQ(m.stretched, m_one.stretched) << c.run.problem << " material " << k;
+        EXPECT_EQ(m.expanded, m_one.expanded) << c.run.problem << " material " << k;
+        EXPECT_EQ(m.pressure_outliers, m_one.pressure_outliers) << c.run.problem << " " << k;
+        EXPECT_EQ(m.rho_pure_median, m_one.rho_pure_median) << c.run.problem << " " << k;
+        EXPECT_EQ(m.p_pure_lo, m_one.p_pure_lo) << c.run.problem << " material " << k;
+        EXPECT_EQ(m.p_mixed_lo, m_one.p_mixed_lo) << c.run.problem << " material " << k;
+      }
+    }
     for (const std::string& csv : c.csv_in_cell_order) {
       std::ifstream a(dir + "/ranks/" + csv), b(dir + "/one/" + csv);
       const std::string text(std::istreambuf_iterator<char>(a), {});
