@@ -181,7 +181,7 @@ RadialBins radialProfile(const FinalFields& fields, double size, int n_bins,
       const ExactCellState reference = exactAt(*exact, p0, cellCentroid(fields, c));
       rows << ',' << reference.rho << ',' << reference.p << ',' << norm(reference.v);
     } else {
-      rows << ",,,";
+      rows << ",nan,nan,nan";
     }
     rows << '\n';
     const int bin = int(r / size * n_bins);
