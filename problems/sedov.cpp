@@ -357,8 +357,9 @@ SedovL1Errors sedovL1Errors(const Config& config, const FinalFields& fields) {
 // u2, p2) times (R / size)^3 times a function of h / R, here the power law
 // through the two measurements (orders 0.33 to 1.04: the density spike
 // behind the shock, 0.04 R wide, is not resolved yet). On runs at other E, t
-// and h / R (0.027 to 0.16: 45^3, 20^3, t = 0.3 at 12^3 and 15^3) the power
-// law gave 0.88 to 1.18 times the measured error, so the bound 1.13 to 1.54 times.
+// and h / R (0.02 to 0.16: 20^3 to 60^3, t = 0.3 at 12^3 and 15^3, E = 1.2)
+// the power law gave 0.88 to 1.29 times the measured error, the bound 1.15 to
+// 1.67 times.
 struct L1Measured {
   double at_30[3], at_15[3];  // density, velocity, pressure
 };
@@ -442,7 +443,7 @@ std::vector<Check> finishSedov(const Config& config, const FinalFields& fields,
                           "L1 norm of p - p_exact (cell averages) over the octant / its volume"};
   const double values[3] = {l1.density, l1.velocity, l1.pressure};
   std::array<double, 3> bounds = {NAN, NAN, NAN};
-  // The built-in bounds were measured at gamma = 1.4, resolving R by 6 to 37 cells.
+  // The built-in bounds were measured at gamma = 1.4, resolving R by 6 to 50 cells.
   std::string why_no_default;
   if (why_not.empty()) {
     if (std::abs(config.real("gas.gamma") - 1.4) > 1e-12) {

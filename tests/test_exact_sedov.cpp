@@ -72,10 +72,10 @@ std::string caseName(double gamma, SedovGeometry geometry) {
 // Kamm & Timmes, Table 4 (gamma = 1.4): their energy integrals J1 = int b g V^2 lambda^(j+1)
 // and J2 = z int h lambda^(j-1), z = 8 / ((j+2)^2 (gamma+1)). Ours from the profile by
 // quadrature in lambda. J1 agrees to all their 6 digits; our J2 lies above theirs by 4.4e-4
-// (planar), 3.4e-5 (cylindrical), 1.7e-5 (spherical) relative, with our alpha accordingly
-// (0.538743, 0.984074, 0.851072 against their 0.538548, 0.984041, 0.851060): J2's integrand
-// dlambda/dV is singular at the centre (V -> v0), where their quadrature loses the most in the
-// planar case, whose centre weighs the most (ExactPack's tests of it accept 1e-3 for J2). Our
+// (planar), 4.1e-5 (cylindrical), 1.8e-5 (spherical) relative, with our alpha accordingly
+// (0.538743, 0.984074, 0.851072 against their 0.538548, 0.984041, 0.851060). J2's integrand
+// in their variable V, dlambda/dV, is singular at the centre (V -> v0), and the difference is
+// largest where the centre weighs the most (planar): we take it to be their quadrature's. Our
 // J2 is the same to 1e-12 in two quadratures in two variables (here in lambda, the solver's in
 // x2^beta), the profile they integrate matches Tables 1-3, the Euler equations and the swept
 // mass, and 0.851072 is the spherical alpha the literature's R = 1 at t = 1 uses.
