@@ -913,6 +913,13 @@ def plot_radial(run: Run, out_path: str, field: str) -> str:
     # Proxy handle: the real points are too faint to read in a legend.
     handles = [Line2D([], [], ls="", marker="o", ms=4, color="tab:blue",
                       label=f"cells ({n})")]
+    # The exact solution at the same centroids (sedov's radial.csv carries it):
+    # the curve the cells should lie on.
+    exact = t.get(f"{field}_exact")
+    if exact is not None and exact.dtype.kind == "f" and np.isfinite(exact).any():
+        order = np.argsort(r)
+        handles += ax.plot(r[order], exact[order], color="black", lw=1.0,
+                           label="exact solution")
 
     shock = run.check("shock_radius")
     if shock:

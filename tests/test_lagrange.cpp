@@ -336,6 +336,18 @@ TEST(Lagrange, SedovShockRadiusAndOctantSymmetry) {
   }
   EXPECT_NEAR(checkValue(result, "shock_radius"), 1.0, 0.03);
   EXPECT_LT(checkValue(result, "octant_symmetry"), 1e-10);
+  // L1 errors against the exact solution (docs/verification.md §8.8), measured
+  // at 20^3: 0.1219, 6.72e-3, 2.55e-3; each check applies with its built-in bound
+  int l1_checks = 0;
+  for (const auto& check : result.checks) {
+    if (check.name.rfind("l1_", 0) != 0) continue;
+    ++l1_checks;
+    EXPECT_TRUE(check.applies) << check.name << ": " << check.not_applicable;
+  }
+  EXPECT_EQ(l1_checks, 3);
+  EXPECT_NEAR(checkValue(result, "l1_density"), 0.1219, 0.005);
+  EXPECT_NEAR(checkValue(result, "l1_velocity"), 6.72e-3, 3e-4);
+  EXPECT_NEAR(checkValue(result, "l1_pressure"), 2.55e-3, 1e-4);
 }
 
 // The CRS gather makes every node sum in corner order: results are bit for bit
