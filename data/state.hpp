@@ -42,6 +42,9 @@ struct State {
   // carried (mass, energy) but has no say in the cell's stress (its density
   // is the ratio of two tiny remapped numbers). 0 in lagrange mode.
   double alpha_trace = 0.0;
+  // ... and a fluid below this one in a cell that also holds a solid (the
+  // remap's diffusion tail of a gas inside a body, docs/method.md §4.6).
+  double alpha_tail = 0.0;
   MixtureClosure closure = MixtureClosure::Relaxation;
   MatRealView alpha_ck;  // volume fraction (docs/method.md §4.2: shared volume changes)
   MatRealView m_ck;      // mass

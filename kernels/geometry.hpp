@@ -67,6 +67,28 @@ constexpr double kMinVolumeKept = 1e-3;
 // A hypo-elastic solid filling at least this fraction of a mixed cell is a
 // body of its own (see above).
 constexpr double kSolidBodyAlpha = 0.5;
+// The volume fraction below which material k of mixed cell c is a trace
+// (docs/method.md §4.6), given the cell's fractions `alpha` (the current or
+// the step-start ones): State::alpha_trace, and State::alpha_tail for a fluid
+// in a cell that also holds a solid. Such a fluid is the remap's diffusion
+// tail of a gas inside a body, cells within the interface, not a layer beside
+// it: its gradient (a hundredth a cell) gives no interface normal, and met as
+// a layer it took the body's normal stress across that noise. Where the body
+// was in tension (the `beam`'s plate at --scale 2, 20 GPa along the plate)
+// the relaxation inflated the tail 10% a step, the body's tension relaxed
+// along the tilted normal and the plate opened into cracks.
+template <class Alpha>
+KOKKOS_INLINE_FUNCTION double traceFraction(const State& s, const Alpha& alpha, Index c, int k) {
+  if (s.materials(k).strength != StrengthKind::None || !(s.alpha_tail > s.alpha_trace)) {
+    return s.alpha_trace;
+  }
+  for (int m = 0; m < s.n_materials; ++m) {
+    if (m != k && alpha(c, m) > 0.0 && s.materials(m).strength != StrengthKind::None) {
+      return s.alpha_tail;
+    }
+  }
+  return s.alpha_trace;
+}
 // A solid body of a mixed cell (see above): its normal stretch is its own.
 KOKKOS_INLINE_FUNCTION bool takesOwnNormalStretch(const MaterialParams& material, double alpha,
                                                   double alpha_trace) {
@@ -94,8 +116,8 @@ KOKKOS_INLINE_FUNCTION void relaxationVolumes(const State& s, Index c,
   double weight_sum = 0.0;
   for (int m = 0; m < kMaxMaterials; ++m) relax[m] = 0.0;
   for (int m = 0; m < n_materials; ++m) {
-    relaxes[m] =
-        s.alpha_ck0(c, m) > 0.0 && s.alpha_ck0(c, m) >= s.alpha_trace && s.w_ck0(c, m) > 0.0;
+    relaxes[m] = s.alpha_ck0(c, m) > 0.0 &&
+                 s.alpha_ck0(c, m) >= traceFraction(s, s.alpha_ck0, c, m) && s.w_ck0(c, m) > 0.0;
     if (!relaxes[m]) continue;
     weight_sum += s.w_ck0(c, m);
     sigma[m] = -s.p_ck0(c, m);
@@ -168,11 +190,14 @@ KOKKOS_INLINE_FUNCTION CellThermo cellThermo(const State& s, Index c, double vol
   CellThermo mix;
   int present = 0;
   for (int k = 0; k < s.n_materials; ++k) present += s.alpha_ck(c, k) > 0.0;
-  const double threshold = present > 1 ? s.alpha_trace : 0.0;
+  double threshold[kMaxMaterials];  // a trace below it (none in a pure cell)
+  for (int k = 0; k < s.n_materials; ++k) {
+    threshold[k] = present > 1 ? traceFraction(s, s.alpha_ck, c, k) : 0.0;
+  }
   double active_alpha = 0.0, active_mass = 0.0;
   for (int k = 0; k < s.n_materials; ++k) {
     const double alpha = s.alpha_ck(c, k);
-    if (alpha > 0.0 && alpha >= threshold) {
+    if (alpha > 0.0 && alpha >= threshold[k]) {
       active_alpha += alpha;
       active_mass += s.m_ck(c, k);
     }
@@ -182,7 +207,7 @@ KOKKOS_INLINE_FUNCTION CellThermo cellThermo(const State& s, Index c, double vol
   SymMat3 deviator = identitySym(0.0);
   for (int k = 0; k < s.n_materials; ++k) {
     const double alpha = s.alpha_ck(c, k);
-    if (!(alpha > 0.0 && alpha >= threshold)) continue;
+    if (!(alpha > 0.0 && alpha >= threshold[k])) continue;
     const MaterialParams& material = s.materials(k);
     const double mass = s.m_ck(c, k);
     const double rho = mass / (alpha * volume);
@@ -226,7 +251,7 @@ KOKKOS_INLINE_FUNCTION CellThermo cellThermo(const State& s, Index c, double vol
     deviator = scale * deviator;
     for (int k = 0; k < s.n_materials; ++k) {
       const double alpha = s.alpha_ck(c, k);
-      if (alpha > 0.0 && alpha < threshold) {
+      if (alpha > 0.0 && alpha < threshold[k]) {
         s.p_ck(c, k) = mix.pressure;
         // no say in the volume change either: the gas trace in an aluminium
         // cell kept the w = alpha / (gamma p) of its near-vacuum past and took

@@ -1316,7 +1316,7 @@ KOKKOS_FORCEINLINE_FUNCTION void mixedCellBudget(const State& s, Index c, double
     } else if (s.e_ck0(c, k) > 0.0) {
       budget.gas_heat += s.m_ck(c, k) * s.e_ck0(c, k);
     }
-    if (alpha >= s.alpha_trace) {
+    if (alpha >= traceFraction(s, s.alpha_ck, c, k)) {
       const Mat3 gradient_k =
           materialGradient(s, c, k, true, gradient, budget.own_ratio[k], dt_stage);
       budget.dissipation -= materialWork(s, c, k, gradient_k, budget.own_ratio[k], dt_stage);
@@ -1389,7 +1389,6 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
     if (!mixed) return;  // (only a mixed cell's budget is left)
   }
   const Mat3 gradient = velocityGradient(cell_nodes, s, c);
-  const double threshold = mixed ? s.alpha_trace : 0.0;
   detail::MixedCellBudget budget;
   if (mixed) {
     if constexpr (kEnergies) {
@@ -1404,7 +1403,7 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
   for (int k = 0; k < s.n_materials; ++k) {
     const double alpha = s.alpha_ck(c, k);
     if (!(alpha > 0.0)) continue;
-    const bool trace = alpha < threshold;
+    const bool trace = mixed && alpha < traceFraction(s, s.alpha_ck, c, k);
     const double own_ratio = mixed ? budget.own_ratio[k] : 1.0;
     if (kEnergies && mixed) {
       const double work =

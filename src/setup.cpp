@@ -31,6 +31,10 @@ Config declareConfig(const Problem& problem, const std::string& mode) {
     config.addReal("remap.alpha_trace", 1e-3, "-",
                    "volume fraction below which a material of a mixed cell is a trace: carried, "
                    "but left out of the cell's stress and sound speed");
+    config.addReal("remap.alpha_tail", 1e-2, "-",
+                   "volume fraction below which a fluid in a cell that also holds a solid is a "
+                   "trace (the remap's diffusion tail inside a body: it takes no part in the "
+                   "relaxation); docs/method.md §4.6");
   }
   config.addChoice("numerics.order", "2", {"1", "2"},
                    "1: first order; 2: limited linear reconstruction + predictor-corrector");
@@ -232,8 +236,12 @@ RemapControls readRemapControls(const Config& config, State& state) {
   state.alpha_trace = config.real("remap.alpha_trace");
   state.closure = config.text("mixture.closure") == "equal_strain" ? MixtureClosure::EqualStrain
                                                                    : MixtureClosure::Relaxation;
+  state.alpha_tail = config.real("remap.alpha_tail");
   if (!(state.alpha_trace >= 0.0 && state.alpha_trace < 0.5 / state.n_materials)) {
     throw ConfigError("remap.alpha_trace must be in [0, 0.5 / number of materials)");
+  }
+  if (!(state.alpha_tail >= state.alpha_trace && state.alpha_tail < 0.5 / state.n_materials)) {
+    throw ConfigError("remap.alpha_tail must be in [remap.alpha_trace, 0.5 / number of materials)");
   }
   if (!(controls.beta_alpha >= 1.0 && controls.beta_alpha <= 2.0)) {
     throw ConfigError("remap.beta must be in [1, 2]");
