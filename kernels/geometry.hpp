@@ -77,17 +77,19 @@ constexpr double kSolidBodyAlpha = 0.5;
 // was in tension (the `beam`'s plate at --scale 2, 20 GPa along the plate)
 // the relaxation inflated the tail 10% a step, the body's tension relaxed
 // along the tilted normal and the plate opened into cracks.
+// `holds_solid`: cellHoldsSolid.
+KOKKOS_INLINE_FUNCTION double traceFraction(const State& s, int k, bool holds_solid) {
+  return holds_solid && s.materials(k).strength == StrengthKind::None ? s.alpha_tail
+                                                                      : s.alpha_trace;
+}
+// Whether cell c holds a solid, by its fractions `alpha` (the current or the
+// step-start ones).
 template <class Alpha>
-KOKKOS_INLINE_FUNCTION double traceFraction(const State& s, const Alpha& alpha, Index c, int k) {
-  if (s.materials(k).strength != StrengthKind::None || !(s.alpha_tail > s.alpha_trace)) {
-    return s.alpha_trace;
-  }
+KOKKOS_INLINE_FUNCTION bool cellHoldsSolid(const State& s, const Alpha& alpha, Index c) {
   for (int m = 0; m < s.n_materials; ++m) {
-    if (m != k && alpha(c, m) > 0.0 && s.materials(m).strength != StrengthKind::None) {
-      return s.alpha_tail;
-    }
+    if (alpha(c, m) > 0.0 && s.materials(m).strength != StrengthKind::None) return true;
   }
-  return s.alpha_trace;
+  return false;
 }
 // A solid body of a mixed cell (see above): its normal stretch is its own.
 KOKKOS_INLINE_FUNCTION bool takesOwnNormalStretch(const MaterialParams& material, double alpha,
@@ -115,9 +117,10 @@ KOKKOS_INLINE_FUNCTION void relaxationVolumes(const State& s, Index c,
   double sigma[kMaxMaterials];  // -P^m
   double weight_sum = 0.0;
   for (int m = 0; m < kMaxMaterials; ++m) relax[m] = 0.0;
+  const bool holds_solid = cellHoldsSolid(s, s.alpha_ck0, c);
   for (int m = 0; m < n_materials; ++m) {
-    relaxes[m] = s.alpha_ck0(c, m) > 0.0 &&
-                 s.alpha_ck0(c, m) >= traceFraction(s, s.alpha_ck0, c, m) && s.w_ck0(c, m) > 0.0;
+    relaxes[m] = s.alpha_ck0(c, m) > 0.0 && s.alpha_ck0(c, m) >= traceFraction(s, m, holds_solid) &&
+                 s.w_ck0(c, m) > 0.0;
     if (!relaxes[m]) continue;
     weight_sum += s.w_ck0(c, m);
     sigma[m] = -s.p_ck0(c, m);
@@ -190,14 +193,15 @@ KOKKOS_INLINE_FUNCTION CellThermo cellThermo(const State& s, Index c, double vol
   CellThermo mix;
   int present = 0;
   for (int k = 0; k < s.n_materials; ++k) present += s.alpha_ck(c, k) > 0.0;
-  double threshold[kMaxMaterials];  // a trace below it (none in a pure cell)
-  for (int k = 0; k < s.n_materials; ++k) {
-    threshold[k] = present > 1 ? traceFraction(s, s.alpha_ck, c, k) : 0.0;
-  }
+  // a trace below its threshold (none in a pure cell)
+  const bool holds_solid = present > 1 && cellHoldsSolid(s, s.alpha_ck, c);
+  const auto threshold = [&](int k) {
+    return present > 1 ? traceFraction(s, k, holds_solid) : 0.0;
+  };
   double active_alpha = 0.0, active_mass = 0.0;
   for (int k = 0; k < s.n_materials; ++k) {
     const double alpha = s.alpha_ck(c, k);
-    if (alpha > 0.0 && alpha >= threshold[k]) {
+    if (alpha > 0.0 && alpha >= threshold(k)) {
       active_alpha += alpha;
       active_mass += s.m_ck(c, k);
     }
@@ -207,7 +211,7 @@ KOKKOS_INLINE_FUNCTION CellThermo cellThermo(const State& s, Index c, double vol
   SymMat3 deviator = identitySym(0.0);
   for (int k = 0; k < s.n_materials; ++k) {
     const double alpha = s.alpha_ck(c, k);
-    if (!(alpha > 0.0 && alpha >= threshold[k])) continue;
+    if (!(alpha > 0.0 && alpha >= threshold(k))) continue;
     const MaterialParams& material = s.materials(k);
     const double mass = s.m_ck(c, k);
     const double rho = mass / (alpha * volume);
@@ -251,7 +255,7 @@ KOKKOS_INLINE_FUNCTION CellThermo cellThermo(const State& s, Index c, double vol
     deviator = scale * deviator;
     for (int k = 0; k < s.n_materials; ++k) {
       const double alpha = s.alpha_ck(c, k);
-      if (alpha > 0.0 && alpha < threshold[k]) {
+      if (alpha > 0.0 && alpha < threshold(k)) {
         s.p_ck(c, k) = mix.pressure;
         // no say in the volume change either: the gas trace in an aluminium
         // cell kept the w = alpha / (gamma p) of its near-vacuum past and took
