@@ -221,8 +221,8 @@ void writeSliceZ(const std::string& out_dir, const FinalFields& fields) {
   writeRowsInCellOrder(rows.str(), fields.distributed, slice);
 }
 
-std::vector<Check> finishSedov(const Config& config, const FinalFields& fields,
-                               const std::string& out_dir) {
+ProblemResults finishSedov(const Config& config, const FinalFields& fields,
+                           const std::string& out_dir) {
   const double measured_radius = shockRadius(fields, config.real("geometry.size"), out_dir);
   const bool cubic = fields.nx == fields.ny && fields.ny == fields.nz;
   const OctantSymmetry symmetry = cubic ? octantSymmetry(fields) : OctantSymmetry{};
