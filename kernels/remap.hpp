@@ -95,7 +95,16 @@ struct RemapControls {
   // Below this volume fraction a material is dropped from the cell after the
   // sweep (its mass and energy go to the cell's main material).
   double alpha_floor = 1e-10;
-  bool limit = true;               // false: unlimited reconstruction (tests: linear exactness)
+  bool limit = true;  // false: unlimited reconstruction (tests: linear exactness)
+  // false (--order 1): constant states in the cells, first-order upwind
+  // fluxes (the gradients zeroed after remapGradients, which still gives
+  // the interface normals)
+  bool reconstruct = true;
+  // The range that bounds a swept parcel's specific energy and plastic
+  // strain (remap.parcel_bound, docs/method.md §5.2): false, the two cells
+  // sharing the face; true, the upwind cell's limiter stencil (it and its
+  // face neighbours).
+  bool stencil_parcel_bound = false;
   bool kinetic_energy_fix = true;  // false: kinetic energy from the remapped momentum (tests)
   KernelForm kernels = defaultKernelForm();  // numerics.kernels
 };
@@ -513,21 +522,41 @@ KOKKOS_FORCEINLINE_FUNCTION Vec3 limitedLever(const Vec3& lever, double reach_up
 }
 
 // A parcel's specific energy (or plastic strain: `column`) stays inside the
-// range of the two cells sharing the face (a positivity guard: within the
-// reach the linear extrapolation may still pass the face, which a material
-// at 1 J/kg beside one at 1e6 J/kg cannot afford). `other`: the downwind cell.
+// range of the cells it may come from (a positivity guard: within the reach
+// the linear extrapolation may still pass the face, which a material at 1
+// J/kg beside one at 1e6 J/kg cannot afford): the two cells sharing the face
+// (`other`: the downwind cell), or with `stencil` the upwind cell and its
+// face neighbours, the range its limiter keeps the reconstruction in. A
+// region swept by an oblique face reaches the upwind cell's neighbours
+// across its other faces, whose values the face's two cells need not span:
+// clipped to the face's range, the parcel's energy alone is cut, its
+// density not, and a smooth flow at uniform pressure gets a pressure error
+// of the size of the slope along the face (docs/verification.md §2e).
 KOKKOS_FORCEINLINE_FUNCTION double boundedSpecificFlux(const RemapLayout& layout,
-                                                       const RemapFields& fields, Index other,
-                                                       int m, int column, double mass_flux,
-                                                       double e_up, double energy_flux) {
-  double e_lo_face = e_up, e_hi_face = e_up;
-  const double mass_other = fields.density(other, layout.mass(m));
-  if (fields.density(other, layout.alpha(m)) > 0.0 && mass_other > 0.0) {
-    const double e_other = fields.primitive(other, column);
-    e_lo_face = e_other < e_lo_face ? e_other : e_lo_face;
-    e_hi_face = e_other > e_hi_face ? e_other : e_hi_face;
+                                                       const RemapFields& fields,
+                                                       const CellFacesView& neighbors, bool stencil,
+                                                       Index up, Index other, int m, int column,
+                                                       double mass_flux, double e_up,
+                                                       double energy_flux) {
+  double e_lo = e_up, e_hi = e_up;
+  const auto include = [&](Index source) {
+    if (!(fields.density(source, layout.alpha(m)) > 0.0 &&
+          fields.density(source, layout.mass(m)) > 0.0)) {
+      return;
+    }
+    const double e_source = fields.primitive(source, column);
+    e_lo = e_source < e_lo ? e_source : e_lo;
+    e_hi = e_source > e_hi ? e_source : e_hi;
+  };
+  if (stencil) {
+    for (int f = 0; f < 6; ++f) {
+      const Index nb = neighbors(up, f);
+      if (nb >= 0) include(nb);
+    }
+  } else {
+    include(other);
   }
-  const double bound_a = mass_flux * e_lo_face, bound_b = mass_flux * e_hi_face;
+  const double bound_a = mass_flux * e_lo, bound_b = mass_flux * e_hi;
   const double lowest = bound_a < bound_b ? bound_a : bound_b;
   const double highest = bound_a < bound_b ? bound_b : bound_a;
   return energy_flux < lowest ? lowest : (energy_flux > highest ? highest : energy_flux);
@@ -542,10 +571,10 @@ KOKKOS_FORCEINLINE_FUNCTION double boundedSpecificFlux(const RemapLayout& layout
 // e^k and V are taken constant (their slopes would carry the cell's whole
 // (alpha rho)_up into a region that may hold a sliver of the material).
 template <class Integral, class Range>
-KOKKOS_FORCEINLINE_FUNCTION void fluxInteriorRegion(const RemapLayout& layout,
-                                                    const RemapFields& fields, Index c, Index nb,
-                                                    Index up, double dvol, const Vec3& lever,
-                                                    bool limit, Integral& integral, Range& range) {
+KOKKOS_FORCEINLINE_FUNCTION void fluxInteriorRegion(
+    const RemapLayout& layout, const RemapFields& fields, const CellFacesView& neighbors, Index c,
+    Index nb, Index up, double dvol, const Vec3& lever, bool limit, bool stencil_bound,
+    Integral& integral, Range& range) {
   const auto& q = fields.density;
   const auto& w = fields.primitive;
   auto slope = [&](int v) {  // limited gradient of column v's primitive . lever
@@ -571,8 +600,9 @@ KOKKOS_FORCEINLINE_FUNCTION void fluxInteriorRegion(const RemapLayout& layout,
     integral[layout.mass(m)] += mass_flux;
     double energy_flux = mass_flux * e_up + (pure_up ? mass_up * slope(layout.energy(m)) : 0.0);
     if (limit) {
-      energy_flux = boundedSpecificFlux(layout, fields, up == c ? nb : c, m, layout.energy(m),
-                                        mass_flux, e_up, energy_flux);
+      energy_flux =
+          boundedSpecificFlux(layout, fields, neighbors, stencil_bound, up, up == c ? nb : c, m,
+                              layout.energy(m), mass_flux, e_up, energy_flux);
     }
     integral[layout.energy(m)] += energy_flux;
     mass_flux_total += mass_flux;
@@ -588,8 +618,9 @@ KOKKOS_FORCEINLINE_FUNCTION void fluxInteriorRegion(const RemapLayout& layout,
     const double eps_up = w(up, plastic);
     double plastic_flux = mass_flux * eps_up + (pure_up ? mass_up * slope(plastic) : 0.0);
     if (limit) {
-      plastic_flux = boundedSpecificFlux(layout, fields, up == c ? nb : c, m, plastic, mass_flux,
-                                         eps_up, plastic_flux);
+      plastic_flux =
+          boundedSpecificFlux(layout, fields, neighbors, stencil_bound, up, up == c ? nb : c, m,
+                              plastic, mass_flux, eps_up, plastic_flux);
     }
     integral[plastic] += plastic_flux;
   }
@@ -740,9 +771,9 @@ template <class Integral, class Range, class Array>
 KOKKOS_FORCEINLINE_FUNCTION void remapCell(const State& s, const CellFacesView& neighbors,
                                            bool book_crossing, const RemapLayout& layout,
                                            const RemapFields& fields, const SweptFaces& swept,
-                                           bool limit, double alpha_floor, bool kinetic_energy_fix,
-                                           Index c, Integral& integral, Range& range, Array& alpha,
-                                           Array& mass, Array& internal,
+                                           bool limit, bool stencil_bound, double alpha_floor,
+                                           bool kinetic_energy_fix, Index c, Integral& integral,
+                                           Range& range, Array& alpha, Array& mass, Array& internal,
                                            RemapBoundaryFlux& crossed) {
   // integrals over the Lagrangian cell, then the fluxes of its regions
   const double volume_lag = s.vol_c(c);
@@ -770,7 +801,8 @@ KOKKOS_FORCEINLINE_FUNCTION void remapCell(const State& s, const CellFacesView& 
       const Index up = side == kGainedSide ? nb : c;
       Vec3 lever = loadVec3(swept.moment_r, r) - dvol * loadVec3(s.x_c, up);
       if (limit) lever = limitedLever(lever, fields.reach(up), dvol);
-      fluxInteriorRegion(layout, fields, c, nb, up, dvol, lever, limit, integral, range);
+      fluxInteriorRegion(layout, fields, neighbors, c, nb, up, dvol, lever, limit, stencil_bound,
+                         integral, range);
     }
   }
   cleanUpMaterials(layout, s.materials, integral, volume, range, alpha_floor, alpha, mass,
@@ -791,6 +823,7 @@ static inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state
   const auto owned = mesh.cell_owned;
   const auto s = state;
   const bool limit = controls.limit;
+  const bool stencil_bound = controls.stencil_parcel_bound;
   const double alpha_floor = controls.alpha_floor;
   const bool kinetic_energy_fix = controls.kinetic_energy_fix;
   const auto policy = Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells);
@@ -803,9 +836,9 @@ static inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state
             double integral[kMaxRemapVariables];
             detail::SourceRangeOf<detail::SourceBounds> range;
             double alpha[kMaxMaterials], mass[kMaxMaterials], internal[kMaxMaterials];
-            detail::remapCell(s, neighbors, owned(c), layout, fields, swept, limit, alpha_floor,
-                              kinetic_energy_fix, c, integral, range, alpha, mass, internal,
-                              crossed);
+            detail::remapCell(s, neighbors, owned(c), layout, fields, swept, limit, stencil_bound,
+                              alpha_floor, kinetic_energy_fix, c, integral, range, alpha, mass,
+                              internal, crossed);
           },
           boundary);
       return boundary;
@@ -834,9 +867,9 @@ static inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state
         RowOf integral_row{integral, c}, alpha{s.alpha_ck, c}, mass{s.m_ck, c}, internal{s.e_ck, c};
         detail::SourceRangeOf<detail::SourceBoundsRow> range{{source_range, c}};
         RemapBoundaryFlux unused;
-        detail::remapCell(s, neighbors, false, layout, fields, swept, limit, alpha_floor,
-                          kinetic_energy_fix, c, integral_row, range, alpha, mass, internal,
-                          unused);
+        detail::remapCell(s, neighbors, false, layout, fields, swept, limit, stencil_bound,
+                          alpha_floor, kinetic_energy_fix, c, integral_row, range, alpha, mass,
+                          internal, unused);
       });
   return boundary;
 }

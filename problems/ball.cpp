@@ -244,8 +244,8 @@ void writeBallCsvs(const std::string& out_dir, const FinalFields& fields, const 
       << "plate_rear_bulge," << axis.plate_rear - g.plate_hi_x << ",m\n";
 }
 
-std::vector<Check> finishBall(const Config& config, const FinalFields& fields,
-                              const std::string& out_dir) {
+ProblemResults finishBall(const Config& config, const FinalFields& fields,
+                          const std::string& out_dir) {
   const BallGeometry g = readBallGeometry(config);
   const double t_end = fields.time;
   const MassMoments initial = initialMoments(config);

@@ -166,8 +166,8 @@ double tipDisplacement(const Mesh& mesh, const State& state) {
   return tip.v[1] / tip.v[0];
 }
 
-std::vector<Check> finishBeam(const Config& config, const FinalFields& fields,
-                              const std::string& out_dir) {
+ProblemResults finishBeam(const Config& config, const FinalFields& fields,
+                          const std::string& out_dir) {
   std::ofstream csv;
   if (!out_dir.empty()) csv.open(out_dir + "/beam_tip.csv");
   csv << "t,tip_displacement_y\n" << std::setprecision(10);

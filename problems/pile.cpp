@@ -55,8 +55,8 @@ double meanOver(const std::vector<std::pair<double, double>>& probe, double t0, 
   return n > 0 ? sum / n : NAN;
 }
 
-std::vector<Check> finishPile(const Config& config, const FinalFields& fields,
-                              const std::string& out_dir) {
+ProblemResults finishPile(const Config& config, const FinalFields& fields,
+                          const std::string& out_dir) {
   const double c = std::sqrt(config.real("steel.young") / config.real("steel.rho0"));
   const double transit = config.real("geometry.length") / c;  // L/c = 2 ms
   const double load = config.real("bc.xmax.sigma_xx");

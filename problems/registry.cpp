@@ -29,12 +29,14 @@ extern const Problem kAdvectionProblem;
 extern const Problem kAdvection1DProblem;
 extern const Problem kAirHeliumProblem;
 extern const Problem kWaterAirProblem;
+extern const Problem kBumpProblem;
+extern const Problem kBump1DProblem;
 
 const std::vector<Problem>& problemRegistry() {
   static const std::vector<Problem> problems = {
-      kSodProblem,         kSedovProblem,     kWilkinsProblem, kTaylorProblem, kPileProblem,
-      kBeamProblem,        kShellProblem,     kBallProblem,    kRodProblem,    kAdvectionProblem,
-      kAdvection1DProblem, kAirHeliumProblem, kWaterAirProblem};
+      kSodProblem,         kSedovProblem,     kWilkinsProblem,  kTaylorProblem, kPileProblem,
+      kBeamProblem,        kShellProblem,     kBallProblem,     kRodProblem,    kAdvectionProblem,
+      kAdvection1DProblem, kAirHeliumProblem, kWaterAirProblem, kBumpProblem,   kBump1DProblem};
   return problems;
 }
 

@@ -223,8 +223,8 @@ void writeSymmetryPlane(const std::string& path, const FinalFields& fields, doub
   writeRowsInCellOrder(rows.str(), fields.distributed, csv);
 }
 
-std::vector<Check> finishRod(const Config& config, const FinalFields& fields,
-                             const std::string& out_dir) {
+ProblemResults finishRod(const Config& config, const FinalFields& fields,
+                         const std::string& out_dir) {
   const RodGeometry rod = readRod(config);
   const bool remap = config.remapMode();
   writeSymmetryPlane(out_dir.empty() ? "" : out_dir + "/rod_plane_z0.csv", fields, rod.length);

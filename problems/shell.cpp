@@ -369,8 +369,8 @@ std::vector<Check> shellChecks(const Config& config, double inner_min, double ou
   return checks;
 }
 
-std::vector<Check> finishShell(const Config& config, const FinalFields& fields,
-                               const std::string& out_dir) {
+ProblemResults finishShell(const Config& config, const FinalFields& fields,
+                           const std::string& out_dir) {
   const bool remap = config.remapMode();
   const double inner_min = smallestInnerRadius(fields);
   const double inward_speed = finalInwardSpeed(fields, config.real("t_end"));

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iomanip>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 #include "../src/exact_riemann.hpp"
@@ -81,8 +82,8 @@ double defaultDensityBound(int order, int nx, double density_variation, double t
          (tube_length / default_length);
 }
 
-std::vector<Check> finishSod(const Config& config, const FinalFields& fields,
-                             const std::string& out_dir) {
+ProblemResults finishSod(const Config& config, const FinalFields& fields,
+                         const std::string& out_dir) {
   const double gamma = config.real("gas.gamma");
   const GasState left{config.real("left.rho"), config.real("left.vx"), config.real("left.p")};
   const GasState right{config.real("right.rho"), config.real("right.vx"), config.real("right.p")};
@@ -149,7 +150,9 @@ std::vector<Check> finishSod(const Config& config, const FinalFields& fields,
     check.source = check.name == "transverse_velocity" ? "1D symmetry" : "exact Riemann solution";
   }
   setModeIndependentReferences(config, checks);
-  return checks;
+  ProblemResults results = std::move(checks);
+  results.l1_errors = L1Errors{l1_rho, l1_u, l1_p, kBarL1ErrorsNote};
+  return results;
 }
 
 }  // namespace

@@ -99,8 +99,8 @@ double barLength(const Mesh& mesh, const State& state) {
                                : largestNodeX("lagremap::diagnostics::bar_length", mesh);
 }
 
-std::vector<Check> finishTaylor(const Config& config, const FinalFields& fields,
-                                const std::string& out_dir) {
+ProblemResults finishTaylor(const Config& config, const FinalFields& fields,
+                            const std::string& out_dir) {
   // The deformed bar's cells, and its kinetic energy (an exact sum over the
   // owned cells and the ranks: the same bits on any rank count).
   writeCellOutlines(out_dir.empty() ? "" : out_dir + "/taylor_mesh_z0.csv", fields);

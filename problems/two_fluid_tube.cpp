@@ -17,6 +17,7 @@
 #include <iomanip>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include "../src/exact_riemann.hpp"
 #include "../src/exact_sum.hpp"
@@ -156,8 +157,8 @@ double defaultTubeBound(double error_at_200, long nx, double length) {
   return 1.3 * error_at_200 * std::pow(200.0 / double(nx), 0.9) * length;
 }
 
-std::vector<Check> finishTube(const Config& config, const FinalFields& fields,
-                              const std::string& out_dir, const char* name, double error_at_200) {
+ProblemResults finishTube(const Config& config, const FinalFields& fields,
+                          const std::string& out_dir, const char* name, double error_at_200) {
   const TubeFluid left = readFluid(config, "left", name), right = readFluid(config, "right", name);
   const RiemannSolution exact =
       solveRiemann(left.state, right.state, left.material.gamma, right.material.gamma,
@@ -167,7 +168,7 @@ std::vector<Check> finishTube(const Config& config, const FinalFields& fields,
   const double cell = config.real("geometry.length") / double(config.integer("mesh.nx"));
   // The contact's cells: centres within one cell of the exact contact.
   const double contact = x0 + exact.u_star * t;
-  ExactSum l1, star_p, star_u, star_n;
+  ExactSum l1, l1_u, l1_p, star_p, star_u, star_n;  // (l1: the density's)
   double gas_p_min = 1e300;
   std::ostringstream row;
   row << std::setprecision(10);
@@ -176,7 +177,10 @@ std::vector<Check> finishTube(const Config& config, const FinalFields& fields,
     if (!fields.counts(c)) continue;
     const double x = fields.x_c(c, 0);
     const GasState ref = t > 0.0 ? exact.sample((x - x0) / t) : (x < x0 ? left.state : right.state);
-    l1 += fields.vol(c) / (width * width) * std::abs(fields.rho(c) - ref.rho);
+    const double weight = fields.vol(c) / (width * width);
+    l1 += weight * std::abs(fields.rho(c) - ref.rho);
+    l1_u += weight * std::abs(fields.v(c, 0) - ref.u);
+    l1_p += weight * std::abs(fields.p(c) - ref.p);
     if (std::abs(x - contact) <= cell) {
       star_p += fields.p(c);
       star_u += fields.v(c, 0);
@@ -193,12 +197,14 @@ std::vector<Check> finishTube(const Config& config, const FinalFields& fields,
         << ref.p << '\n';
   }
   if (fields.distributed) {
-    std::vector<ExactSum> sums{l1, star_p, star_u, star_n};
+    std::vector<ExactSum> sums{l1, l1_u, l1_p, star_p, star_u, star_n};
     ExactSum::sumOverRanks(sums);
     l1 = sums[0];
-    star_p = sums[1];
-    star_u = sums[2];
-    star_n = sums[3];
+    l1_u = sums[1];
+    l1_p = sums[2];
+    star_p = sums[3];
+    star_u = sums[4];
+    star_n = sums[5];
     gas_p_min = parallel::min(gas_p_min);
   }
   std::ofstream csv;
@@ -231,15 +237,17 @@ std::vector<Check> finishTube(const Config& config, const FinalFields& fields,
                     "min(p, 0) must be 0"});
   for (Check& check : checks) check.source = "exact Riemann solution (stiffened gases)";
   checks.back().source = "positivity";
-  return checks;
+  ProblemResults results = std::move(checks);
+  results.l1_errors = L1Errors{l1.value(), l1_u.value(), l1_p.value(), kBarL1ErrorsNote};
+  return results;
 }
 
-std::vector<Check> finishAirHelium(const Config& config, const FinalFields& fields,
-                                   const std::string& out_dir) {
+ProblemResults finishAirHelium(const Config& config, const FinalFields& fields,
+                               const std::string& out_dir) {
   return finishTube(config, fields, out_dir, kAirHelium.name, kAirHeliumL1At200);
 }
-std::vector<Check> finishWaterAir(const Config& config, const FinalFields& fields,
-                                  const std::string& out_dir) {
+ProblemResults finishWaterAir(const Config& config, const FinalFields& fields,
+                              const std::string& out_dir) {
   return finishTube(config, fields, out_dir, kWaterAir.name, kWaterAirL1At200);
 }
 

@@ -71,6 +71,34 @@ void markPerfectPlasticityOnly(const Config& config, std::vector<Check>& checks,
 void markDefaultCaseOnly(const Config& config, std::vector<Check>& checks,
                          const std::vector<std::string>& names, const std::string& source);
 
+// L1 norms of the errors of the final state against a problem's exact
+// solution (summary.json "l1_errors"): density, velocity (|V - V_exact|, the
+// vector's magnitude; the x-component's difference on a bar) and pressure,
+// each an integral of |q - q_exact| dV over the cells the note names, with
+// exact sums over the owned cells and the ranks (ExactSum: the same bits on
+// any rank count), and the note saying what is integrated and divided by what.
+struct L1Errors {
+  double density = 0.0, velocity = 0.0, pressure = 0.0;
+  std::string note;
+};
+
+// The note of a bar's L1 errors against an exact solution sampled at each
+// cell's centroid (the shock tubes).
+inline constexpr const char* kBarL1ErrorsNote =
+    "integral over the bar of |q - q_exact| dV divided by its cross-section area (kg/m^2, m^2/s, "
+    "Pa m); velocity: the x-component; q_exact: the exact solution at each cell's centroid";
+
+// What a problem's finish returns: its checks and, where the run has an exact
+// solution, the L1 errors against it (none where the solution does not
+// apply to the run's parameters).
+struct ProblemResults {
+  ProblemResults() = default;
+  // (implicit: a problem without an exact solution returns its checks alone)
+  ProblemResults(std::vector<Check> checks) : checks(std::move(checks)) {}
+  std::vector<Check> checks;
+  std::optional<L1Errors> l1_errors;
+};
+
 // Initial cell state, host side, one entry per cell: a pure cell of material
 // `mat` at (rho, e), unless the mixed-cell arrays are given.
 struct InitialCells {
@@ -137,9 +165,10 @@ struct Problem {
   // conditions, mesh, t_end).
   void (*declare)(Config& config);
   ProblemSetup (*setup)(const Config& config);
-  // Writes the problem's CSVs into out_dir and returns its checks.
-  std::vector<Check> (*finish)(const Config& config, const FinalFields& fields,
-                               const std::string& out_dir);
+  // Writes the problem's CSVs into out_dir and returns its checks (and its
+  // L1 errors where it has an exact solution).
+  ProblemResults (*finish)(const Config& config, const FinalFields& fields,
+                           const std::string& out_dir);
   // Optional: a number measured after every step (e.g. a wall stress), kept
   // in FinalFields::probe and written to probe.csv with this column name.
   double (*probe)(const Mesh& mesh, const State& state) = nullptr;

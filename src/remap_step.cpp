@@ -76,6 +76,7 @@ RemapBoundaryFlux RemapStep::apply() {
     Kokkos::deep_copy(m_ck_saved_, state_.m_ck);
     remapDensities(state_, layout_, fields_);
     remapGradients(mesh_, state_, layout_, controls_, fields_);
+    if (!controls_.reconstruct) Kokkos::deep_copy(fields_.gradient, 0.0);
     computeSweptFaces(mesh_, mesh_.x_n, state_.x_n0, swept_, controls_.kernels);
     crossed = remapUpdate(mesh_, state_, layout_, controls_, fields_, swept_);
     Kokkos::deep_copy(mesh_.x_n, state_.x_n0);

@@ -226,7 +226,9 @@ RunResult runProblem(const RunOptions& options) {
   const std::string& dir = options.output_dir;
   if (problem.probe && writer) writeProbe(dir + "/probe.csv", problem, result.fields);
   if (!result.failed) {
-    result.checks = problem.finish(options.config, result.fields, writer ? dir : "");
+    ProblemResults finished = problem.finish(options.config, result.fields, writer ? dir : "");
+    result.checks = std::move(finished.checks);
+    result.l1_errors = std::move(finished.l1_errors);
     if (result.mixed_cells && result.mixed_cells->hasCondensed()) {
       result.checks.push_back(mixedCellsCheck(*result.mixed_cells));
       if (problem.mixed_cells_not_applicable)

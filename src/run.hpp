@@ -50,6 +50,7 @@ struct RunResult {
   bool failed = false;
   std::string failure;
   std::vector<Check> checks;
+  std::optional<L1Errors> l1_errors;  // against the exact solution, where the problem has one
   double drift_mass = 0.0, drift_momentum = 0.0, drift_energy = 0.0;
   double max_transverse_velocity = 0.0;
   FinalFields fields;                        // host copies of the final (or last good) state
@@ -57,7 +58,7 @@ struct RunResult {
   // Remap runs with several materials: the state of the mixed cells (the
   // mixed_cells check where a material is condensed).
   std::optional<MixedCellReport> mixed_cells;
-  RankCosts costs;                           // memory, set-up time and halo traffic over the ranks
+  RankCosts costs;  // memory, set-up time and halo traffic over the ranks
   bool checksPass() const;
 };
 

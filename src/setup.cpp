@@ -11,6 +11,13 @@
 
 namespace lagremap {
 
+void declareParcelBoundKey(Config& config, const std::string& default_value) {
+  config.addChoice("remap.parcel_bound", default_value, {"face", "stencil"},
+                   "range that bounds a swept parcel's specific energy and plastic strain: face "
+                   "(the two cells sharing the face) or stencil (the upwind cell and its face "
+                   "neighbours: second order on a smooth oblique flow); docs/method.md §5.2");
+}
+
 Config declareConfig(const Problem& problem, const std::string& mode) {
   Config config;
   config.setMode(mode);
@@ -28,6 +35,8 @@ Config declareConfig(const Problem& problem, const std::string& mode) {
         "compressibility, pressures and a solid's normal stress relaxed, dissipation by "
         "mass) or equal_strain (the paper's: volume fractions constant, every material "
         "at the cell's strain rate, dissipation by volume fraction); docs/method.md §4");
+    // (a problem may declare it first with its own default: `bump`)
+    if (!config.has("remap.parcel_bound")) declareParcelBoundKey(config, "face");
     config.addReal("remap.alpha_trace", 1e-3, "-",
                    "volume fraction below which a material of a mixed cell is a trace: carried, "
                    "but left out of the cell's stress and sound speed");
@@ -233,6 +242,8 @@ RemapControls readRemapControls(const Config& config, State& state) {
   RemapControls controls;
   controls.beta_alpha = config.real("remap.beta");
   controls.alpha_floor = config.real("remap.alpha_floor");
+  controls.reconstruct = config.integer("numerics.order") >= 2;  // (--order 1: first order)
+  controls.stencil_parcel_bound = config.text("remap.parcel_bound") == "stencil";
   state.alpha_trace = config.real("remap.alpha_trace");
   state.closure = config.text("mixture.closure") == "equal_strain" ? MixtureClosure::EqualStrain
                                                                    : MixtureClosure::Relaxation;

@@ -17,6 +17,9 @@ namespace lagremap {
 
 // Every key a run has: the common numerics keys plus the problem's.
 Config declareConfig(const Problem& problem, const std::string& mode = "lagrange");
+// remap.parcel_bound (face or stencil, docs/method.md §5.2) with the given
+// default: declareConfig declares it unless the problem has (`bump`).
+void declareParcelBoundKey(Config& config, const std::string& default_value);
 
 // The numerics.* keys (and t_end) as the time loop uses them; throws
 // ConfigError for impossible values.

@@ -163,6 +163,19 @@ void writeMixedCells(JsonWriter& json, const RunResult& result) {
       .endObject();
 }
 
+// Problems with an exact solution: the L1 norms of the final state's errors
+// (src/problem.hpp L1Errors), which scripts/convergence.py reads.
+void writeL1Errors(JsonWriter& json, const RunResult& result) {
+  if (!result.l1_errors) return;
+  const L1Errors& errors = *result.l1_errors;
+  json.beginObject("l1_errors")
+      .value("density", errors.density)
+      .value("velocity", errors.velocity)
+      .value("pressure", errors.pressure)
+      .value("note", errors.note)
+      .endObject();
+}
+
 void writeChecksAndKeys(JsonWriter& json, const Config& config, const RunResult& result) {
   json.beginObject("checks");
   for (const auto& check : result.checks) {
@@ -194,6 +207,7 @@ void writeSummary(const std::string& path, const Simulation& simulation, const R
   writeCosts(json, result.costs);
   writeInterfaces(json, simulation, result);
   writeMixedCells(json, result);
+  writeL1Errors(json, result);
   writeChecksAndKeys(json, simulation.options().config, result);
   json.endObject();
 }

@@ -232,6 +232,21 @@ TEST(CommandLine, SodRunWritesSummaryWithPassingChecks) {
     EXPECT_NE(json.find(field), std::string::npos) << field;
   }
   EXPECT_EQ(json.find("\"pass\": false"), std::string::npos) << json;
+  // l1_errors, the norms against the exact solution (scripts/convergence.py
+  // reads them): its density is the l1_density check's value, to the bit
+  const std::size_t errors = json.find("\"l1_errors\": {");
+  ASSERT_NE(errors, std::string::npos) << json;
+  const std::string block = json.substr(errors, json.find('}', errors) - errors);
+  auto numberAfter = [](const std::string& text, const std::string& field, std::size_t from) {
+    const std::size_t at = text.find("\"" + field + "\": ", from);
+    return at == std::string::npos ? NAN : std::stod(text.substr(at + field.size() + 4));
+  };
+  const double check = numberAfter(json, "value", json.find("\"l1_density\": {"));
+  EXPECT_GT(check, 0.0);
+  EXPECT_EQ(numberAfter(block, "density", 0), check) << block;
+  EXPECT_GT(numberAfter(block, "velocity", 0), 0.0) << block;
+  EXPECT_GT(numberAfter(block, "pressure", 0), 0.0) << block;
+  EXPECT_NE(block.find("\"note\": \"integral over the bar"), std::string::npos) << block;
   for (const char* file :
        {"history.csv", "sod_profile.csv", "fields.xmf", "fields_00000.h5", "fields_00001.h5"}) {
     EXPECT_TRUE(std::filesystem::exists(dir + "/" + file)) << file;

@@ -483,7 +483,11 @@ TEST(Checks, FromOwnedCellsAreTheSingleRankChecks) {
       {{"rod", "remap", {"t_end=2e-6", "mesh.nx=17", "mesh.ny=6", "mesh.nz=6"}, 1.0},
        {"rod_plane_z0.csv"},
        {}},
-      {{"wilkins", "remap", {"t_end=1e-6"}, 1.0}, {"wilkins_profile.csv"}, {}}};
+      {{"wilkins", "remap", {"t_end=1e-6"}, 1.0}, {"wilkins_profile.csv"}, {}},
+      // the exact densities of the moved body and of the moved bump (l1_errors)
+      {{"advection", "remap", {"t_end=2e-4"}, 0.5}, {}, {}},
+      {{"bump", "remap", {"t_end=0.1"}, 0.5}, {"bump_profile.csv"}, {}},
+      {{"bump1d", "remap", {"t_end=0.1"}, 1.0}, {"bump_profile.csv"}, {}}};
   for (const OwnedCase& c : owned_cases) {
     const std::string dir =
         sharedScratch(std::string("owned_checks_") + c.run.problem + "_" + c.run.mode);
@@ -512,6 +516,13 @@ TEST(Checks, FromOwnedCellsAreTheSingleRankChecks) {
       }
       EXPECT_TRUE(a == b || (std::isnan(a) && std::isnan(b)))
           << c.run.problem << " " << c.run.mode << " " << name << " " << a << " " << b;
+    }
+    ASSERT_EQ(decomposed.l1_errors.has_value(), reference.l1_errors.has_value()) << c.run.problem;
+    if (reference.l1_errors) {
+      EXPECT_EQ(decomposed.l1_errors->density, reference.l1_errors->density) << c.run.problem;
+      EXPECT_EQ(decomposed.l1_errors->velocity, reference.l1_errors->velocity) << c.run.problem;
+      EXPECT_EQ(decomposed.l1_errors->pressure, reference.l1_errors->pressure) << c.run.problem;
+      EXPECT_EQ(decomposed.l1_errors->note, reference.l1_errors->note) << c.run.problem;
     }
     EXPECT_EQ(decomposed.max_transverse_velocity, reference.max_transverse_velocity);
     ASSERT_EQ(decomposed.interfaces.size(), reference.interfaces.size()) << c.run.problem;
