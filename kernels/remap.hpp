@@ -104,7 +104,7 @@ struct RemapControls {
   // strain (remap.parcel_bound, docs/method.md §5.2): false, the two cells
   // sharing the face; true, the upwind cell's limiter stencil (it and its
   // face neighbours).
-  bool stencil_parcel_bound = false;
+  bool stencil_parcel_bound = true;
   bool kinetic_energy_fix = true;  // false: kinetic energy from the remapped momentum (tests)
   KernelForm kernels = defaultKernelForm();  // numerics.kernels
 };

@@ -26,7 +26,6 @@
 #include <vector>
 
 #include "../src/problem.hpp"
-#include "../src/setup.hpp"
 #include "uniform_flow.hpp"
 
 namespace lagremap {
@@ -48,10 +47,6 @@ void declareBump(Config& config, bool two_d) {
   config.addReal("bump.x", 0.35, "m", "initial centre x");
   if (two_d) config.addReal("bump.y", 0.35, "m", "initial centre y");
   declareFlowBox(config, two_d, 1.0, 50, 0.02, 1.0);
-  // The parcels' energy bounded by the upwind cell's limiter stencil: with
-  // the face's two cells (the default of the other problems) the diagonal
-  // bump converges at order 0.75, docs/verification.md §2e.
-  declareParcelBoundKey(config, "stencil");
   config.addReal("check.l1_density_bound", 0.0, two_d ? "kg/m" : "kg/m^2",
                  "bound on the L1 density error (0: the built-in bound for the order and mesh)");
 }

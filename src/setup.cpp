@@ -11,13 +11,6 @@
 
 namespace lagremap {
 
-void declareParcelBoundKey(Config& config, const std::string& default_value) {
-  config.addChoice("remap.parcel_bound", default_value, {"face", "stencil"},
-                   "range that bounds a swept parcel's specific energy and plastic strain: face "
-                   "(the two cells sharing the face) or stencil (the upwind cell and its face "
-                   "neighbours: second order on a smooth oblique flow); docs/method.md §5.2");
-}
-
 Config declareConfig(const Problem& problem, const std::string& mode) {
   Config config;
   config.setMode(mode);
@@ -35,8 +28,11 @@ Config declareConfig(const Problem& problem, const std::string& mode) {
         "compressibility, pressures and a solid's normal stress relaxed, dissipation by "
         "mass) or equal_strain (the paper's: volume fractions constant, every material "
         "at the cell's strain rate, dissipation by volume fraction); docs/method.md §4");
-    // (a problem may declare it first with its own default: `bump`)
-    if (!config.has("remap.parcel_bound")) declareParcelBoundKey(config, "face");
+    config.addChoice("remap.parcel_bound", "stencil", {"face", "stencil"},
+                     "range that bounds a swept parcel's specific energy and plastic strain: "
+                     "stencil (the upwind cell and its face neighbours, the range its limiter "
+                     "keeps the reconstruction in: second order on a smooth oblique flow) or face "
+                     "(the two cells sharing the face); docs/method.md §5.2");
     config.addReal("remap.alpha_trace", 1e-3, "-",
                    "volume fraction below which a material of a mixed cell is a trace: carried, "
                    "but left out of the cell's stress and sound speed");

@@ -19,7 +19,6 @@ namespace lagremap {
 Config declareConfig(const Problem& problem, const std::string& mode = "lagrange");
 // remap.parcel_bound (face or stencil, docs/method.md §5.2) with the given
 // default: declareConfig declares it unless the problem has (`bump`).
-void declareParcelBoundKey(Config& config, const std::string& default_value);
 
 // The numerics.* keys (and t_end) as the time loop uses them; throws
 // ConfigError for impossible values.
