@@ -531,7 +531,7 @@ KOKKOS_FORCEINLINE_FUNCTION Vec3 limitedLever(const Vec3& lever, double reach_up
 // across its other faces, whose values the face's two cells need not span:
 // clipped to the face's range, the parcel's energy alone is cut, its
 // density not, and a smooth flow at uniform pressure gets a pressure error
-// of the size of the slope along the face (docs/verification.md §2e).
+// of the size of the slope along the face (docs/verification.md §2f).
 KOKKOS_FORCEINLINE_FUNCTION double boundedSpecificFlux(const RemapLayout& layout,
                                                        const RemapFields& fields,
                                                        const CellFacesView& neighbors, bool stencil,

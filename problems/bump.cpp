@@ -1,5 +1,5 @@
 // `bump` and `bump1d` — the remap's order of accuracy on a smooth field
-// (docs/verification.md §2e): one ideal gas at uniform pressure and velocity
+// (docs/verification.md §2f): one ideal gas at uniform pressure and velocity
 // carries a smooth density bump through the fixed mesh, remap mode only.
 // `bump`: a slab, the bump a disc moving along the diagonal; `bump1d`: a bar,
 // the bump moving along x. The open sides carry the gas pressure as a
@@ -13,7 +13,7 @@
 // Exact solution: the profile moved by v t, V = v0 and p = p0 everywhere.
 // Checks: the L1 density error against the exact cell averages (bound: the
 // measured error of the default case with a margin, scaled by the order's
-// rate, docs/verification.md §2e) and the pressure and velocity uniform to
+// rate, docs/verification.md §2f) and the pressure and velocity uniform to
 // within the remap's truncation error. bump_profile.csv: the cells along the
 // bar, or along the slab's mesh diagonal (i = j), with their exact densities.
 #include <algorithm>
@@ -154,7 +154,7 @@ ProblemSetup setupBump1D(const Config& config) {
 }
 
 // The default case's errors at its 50 (x 50) cells, measured 2026-12-06
-// (docs/verification.md §2e), and their observed orders between 25, 50 and
+// (docs/verification.md §2f), and their observed orders between 25, 50 and
 // 100 (200) cells: the L1 density error and the largest relative pressure
 // and velocity deviations at order 2 (at order 1 the remap keeps p and V
 // uniform to round-off: each parcel carries rho e = p0 / (gamma - 1)).

@@ -509,7 +509,7 @@ TEST(RemapProblems, TwoFluidShockTubesMeetTheExactContactState) {
 
 namespace lagremap {
 
-// The remap's order on a smooth field (docs/verification.md §2e): a density
+// The remap's order on a smooth field (docs/verification.md §2f): a density
 // bump carried by a uniform gas flow along a bar (bump1d) and along the
 // slab's diagonal (bump), at 25, 50 and 100 cells a side. The observed
 // order of the L1 density error is at least 1.8 at order 2 (measured 2.0,
