@@ -68,26 +68,28 @@ constexpr double kMinVolumeKept = 1e-3;
 // body of its own (see above).
 constexpr double kSolidBodyAlpha = 0.5;
 // The volume fraction below which material k of mixed cell c is a trace
-// (docs/method.md §4.6), given the cell's fractions `alpha` (the current or
-// the step-start ones): State::alpha_trace, and State::alpha_tail for a fluid
-// in a cell that also holds a solid. Such a fluid is the remap's diffusion
-// tail of a gas inside a body, cells within the interface, not a layer beside
-// it: its gradient (a hundredth a cell) gives no interface normal, and met as
-// a layer it took the body's normal stress across that noise. Where the body
-// was in tension (the `beam`'s plate at --scale 2, 20 GPa along the plate)
-// the relaxation inflated the tail 10% a step, the body's tension relaxed
-// along the tilted normal and the plate opened into cracks.
-// `holds_solid`: cellHoldsSolid.
-KOKKOS_INLINE_FUNCTION double traceFraction(const State& s, int k, bool holds_solid) {
-  return holds_solid && s.materials(k).strength == StrengthKind::None ? s.alpha_tail
-                                                                      : s.alpha_trace;
+// (docs/method.md §4.6): State::alpha_trace, and State::alpha_tail for a fluid
+// in a cell that also holds a Neo-Hookean solid. Such a fluid is the remap's
+// diffusion tail of a gas inside an elastic body, cells within the
+// interface, not a layer beside it: its gradient (a hundredth a cell) gives
+// no interface normal, and met as a layer it took the body's normal stress
+// across that noise. Where the body was in tension (the `beam`'s plate at
+// --scale 2, 20 GPa along the plate) the tail took the cell's expansion and
+// the relaxation inflated it 10% a step, the body's tension relaxed along
+// the tilted normal and the plate opened into cracks. A hypo-elastic body's
+// deviator is bounded by its yield stress; beside it a tail keeps its say
+// (the `ball`'s near-vacuum tails are where its crater's lips open).
+// `holds_elastic`: cellHoldsElasticBody.
+KOKKOS_INLINE_FUNCTION double traceFraction(const State& s, int k, bool holds_elastic) {
+  return holds_elastic && s.materials(k).strength == StrengthKind::None ? s.alpha_tail
+                                                                        : s.alpha_trace;
 }
-// Whether cell c holds a solid, by its fractions `alpha` (the current or the
-// step-start ones).
+// Whether cell c holds a Neo-Hookean solid, by its fractions `alpha` (the
+// current or the step-start ones).
 template <class Alpha>
-KOKKOS_INLINE_FUNCTION bool cellHoldsSolid(const State& s, const Alpha& alpha, Index c) {
+KOKKOS_INLINE_FUNCTION bool cellHoldsElasticBody(const State& s, const Alpha& alpha, Index c) {
   for (int m = 0; m < s.n_materials; ++m) {
-    if (alpha(c, m) > 0.0 && s.materials(m).strength != StrengthKind::None) return true;
+    if (alpha(c, m) > 0.0 && s.materials(m).strength == StrengthKind::NeoHookean) return true;
   }
   return false;
 }
@@ -117,10 +119,10 @@ KOKKOS_INLINE_FUNCTION void relaxationVolumes(const State& s, Index c,
   double sigma[kMaxMaterials];  // -P^m
   double weight_sum = 0.0;
   for (int m = 0; m < kMaxMaterials; ++m) relax[m] = 0.0;
-  const bool holds_solid = cellHoldsSolid(s, s.alpha_ck0, c);
+  const bool holds_elastic = cellHoldsElasticBody(s, s.alpha_ck0, c);
   for (int m = 0; m < n_materials; ++m) {
-    relaxes[m] = s.alpha_ck0(c, m) > 0.0 && s.alpha_ck0(c, m) >= traceFraction(s, m, holds_solid) &&
-                 s.w_ck0(c, m) > 0.0;
+    relaxes[m] = s.alpha_ck0(c, m) > 0.0 &&
+                 s.alpha_ck0(c, m) >= traceFraction(s, m, holds_elastic) && s.w_ck0(c, m) > 0.0;
     if (!relaxes[m]) continue;
     weight_sum += s.w_ck0(c, m);
     sigma[m] = -s.p_ck0(c, m);
@@ -194,9 +196,9 @@ KOKKOS_INLINE_FUNCTION CellThermo cellThermo(const State& s, Index c, double vol
   int present = 0;
   for (int k = 0; k < s.n_materials; ++k) present += s.alpha_ck(c, k) > 0.0;
   // a trace below its threshold (none in a pure cell)
-  const bool holds_solid = present > 1 && cellHoldsSolid(s, s.alpha_ck, c);
+  const bool holds_elastic = present > 1 && cellHoldsElasticBody(s, s.alpha_ck, c);
   const auto threshold = [&](int k) {
-    return present > 1 ? traceFraction(s, k, holds_solid) : 0.0;
+    return present > 1 ? traceFraction(s, k, holds_elastic) : 0.0;
   };
   double active_alpha = 0.0, active_mass = 0.0;
   for (int k = 0; k < s.n_materials; ++k) {

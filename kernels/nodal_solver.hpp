@@ -1306,7 +1306,7 @@ KOKKOS_FORCEINLINE_FUNCTION void mixedCellBudget(const State& s, Index c, double
   ownVolumeRatios(s, c, dt_stage * s.vol_c(c) * trace(gradient), budget.own_ratio, relaxation);
   const Vec3 v0 = loadVec3(s.v_c0, c);
   budget.dissipation = s.m_c(c) * (e_new - (s.E_c0(c) - 0.5 * dot(v0, v0)));
-  const bool holds_solid = cellHoldsSolid(s, s.alpha_ck, c);
+  const bool holds_elastic = cellHoldsElasticBody(s, s.alpha_ck, c);
   for (int k = 0; k < s.n_materials; ++k) {
     const double alpha = s.alpha_ck(c, k);
     if (!(alpha > 0.0)) continue;
@@ -1317,7 +1317,7 @@ KOKKOS_FORCEINLINE_FUNCTION void mixedCellBudget(const State& s, Index c, double
     } else if (s.e_ck0(c, k) > 0.0) {
       budget.gas_heat += s.m_ck(c, k) * s.e_ck0(c, k);
     }
-    if (alpha >= traceFraction(s, k, holds_solid)) {
+    if (alpha >= traceFraction(s, k, holds_elastic)) {
       const Mat3 gradient_k =
           materialGradient(s, c, k, true, gradient, budget.own_ratio[k], dt_stage);
       budget.dissipation -= materialWork(s, c, k, gradient_k, budget.own_ratio[k], dt_stage);
@@ -1401,11 +1401,11 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
   }
   bool deformation_known = false;
   Mat3 deformation = zeroMat();
-  const bool holds_solid = mixed && cellHoldsSolid(s, s.alpha_ck, c);
+  const bool holds_elastic = mixed && cellHoldsElasticBody(s, s.alpha_ck, c);
   for (int k = 0; k < s.n_materials; ++k) {
     const double alpha = s.alpha_ck(c, k);
     if (!(alpha > 0.0)) continue;
-    const bool trace = mixed && alpha < traceFraction(s, k, holds_solid);
+    const bool trace = mixed && alpha < traceFraction(s, k, holds_elastic);
     const double own_ratio = mixed ? budget.own_ratio[k] : 1.0;
     if (kEnergies && mixed) {
       const double work =
