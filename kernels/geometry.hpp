@@ -67,36 +67,31 @@ constexpr double kMinVolumeKept = 1e-3;
 // A hypo-elastic solid filling at least this fraction of a mixed cell is a
 // body of its own (see above).
 constexpr double kSolidBodyAlpha = 0.5;
-// A fluid's tail beside an elastic body (docs/method.md §4.6): a fluid
-// below State::alpha_tail in a cell that also holds a Neo-Hookean solid, by
-// the step-start fractions. It is the remap's diffusion tail of a gas inside
-// the body, cells within the interface, not a layer beside it: its gradient
-// (a hundredth a cell) gives no interface normal, and it cannot open the
-// body. So it takes no part in the relaxation and no share of the cell's
-// expansion (it still yields to a compression). Given both, at the `beam`'s
-// stretched lower face at --scale 2 (20 GPa along the plate), the tail took
-// the cell's expansion and was inflated by the relaxation 10% a step
-// against the body's normal stress across a tilted normal, the body's
-// tension relaxed along it and the plate opened into cracks. A hypo-elastic
-// body's deviator is bounded by its yield stress; beside it a tail is a
-// material (the `ball`'s near-vacuum tails are where its crater's lips open).
+// The volume fraction below which material k of mixed cell c is a trace
+// (docs/method.md §4.6): State::alpha_trace, and State::alpha_tail for a fluid
+// in a cell that also holds a Neo-Hookean solid. Such a fluid is the remap's
+// diffusion tail of a gas inside an elastic body, cells within the
+// interface, not a layer beside it: its gradient (a hundredth a cell) gives
+// no interface normal, and met as a layer it took the body's normal stress
+// across that noise. Where the body was in tension (the `beam`'s plate at
+// --scale 2, 20 GPa along the plate) the tail took the cell's expansion and
+// the relaxation inflated it 10% a step, the body's tension relaxed along
+// the tilted normal and the plate opened into cracks. A hypo-elastic body's
+// deviator is bounded by its yield stress; beside it a tail keeps its say
+// (the `ball`'s near-vacuum tails are where its crater's lips open).
 // `holds_elastic`: cellHoldsElasticBody.
-KOKKOS_INLINE_FUNCTION bool isFluidTail(const State& s, Index c, int k, bool holds_elastic) {
-  return holds_elastic && s.materials(k).strength == StrengthKind::None &&
-         s.alpha_ck0(c, k) < s.alpha_tail;
+KOKKOS_INLINE_FUNCTION double traceFraction(const State& s, int k, bool holds_elastic) {
+  return holds_elastic && s.materials(k).strength == StrengthKind::None ? s.alpha_tail
+                                                                        : s.alpha_trace;
 }
-// Whether cell c held a Neo-Hookean solid at the start of the step.
-KOKKOS_INLINE_FUNCTION bool cellHoldsElasticBody(const State& s, Index c) {
+// Whether cell c holds a Neo-Hookean solid, by its fractions `alpha` (the
+// current or the step-start ones).
+template <class Alpha>
+KOKKOS_INLINE_FUNCTION bool cellHoldsElasticBody(const State& s, const Alpha& alpha, Index c) {
   for (int m = 0; m < s.n_materials; ++m) {
-    if (s.alpha_ck0(c, m) > 0.0 && s.materials(m).strength == StrengthKind::NeoHookean) return true;
+    if (alpha(c, m) > 0.0 && s.materials(m).strength == StrengthKind::NeoHookean) return true;
   }
   return false;
-}
-// Material k's weight in the share of the cell's volume change (w^k of the
-// step start), none for a fluid's tail in an expansion.
-KOKKOS_INLINE_FUNCTION double volumeShareWeight(const State& s, Index c, int k, bool expanding,
-                                                bool holds_elastic) {
-  return expanding && isFluidTail(s, c, k, holds_elastic) ? 0.0 : s.w_ck0(c, k);
 }
 // A solid body of a mixed cell (see above): its normal stretch is its own.
 KOKKOS_INLINE_FUNCTION bool takesOwnNormalStretch(const MaterialParams& material, double alpha,
@@ -124,10 +119,10 @@ KOKKOS_INLINE_FUNCTION void relaxationVolumes(const State& s, Index c,
   double sigma[kMaxMaterials];  // -P^m
   double weight_sum = 0.0;
   for (int m = 0; m < kMaxMaterials; ++m) relax[m] = 0.0;
-  const bool holds_elastic = cellHoldsElasticBody(s, c);
+  const bool holds_elastic = cellHoldsElasticBody(s, s.alpha_ck0, c);
   for (int m = 0; m < n_materials; ++m) {
-    relaxes[m] = s.alpha_ck0(c, m) > 0.0 && s.alpha_ck0(c, m) >= s.alpha_trace &&
-                 !isFluidTail(s, c, m, holds_elastic) && s.w_ck0(c, m) > 0.0;
+    relaxes[m] = s.alpha_ck0(c, m) > 0.0 &&
+                 s.alpha_ck0(c, m) >= traceFraction(s, m, holds_elastic) && s.w_ck0(c, m) > 0.0;
     if (!relaxes[m]) continue;
     weight_sum += s.w_ck0(c, m);
     sigma[m] = -s.p_ck0(c, m);
@@ -167,17 +162,15 @@ KOKKOS_INLINE_FUNCTION double relaxationVolume(const State& s, Index c, int k) {
 KOKKOS_FORCEINLINE_FUNCTION void shareVolumeChange(const State& s, Index c, double volume,
                                                    const StageRelaxation* known = nullptr) {
   if (s.closure == MixtureClosure::EqualStrain) return;  // alpha^k unchanged
-  const double volume_start = s.vol_c0(c);
-  const bool expanding = volume > volume_start;
-  const bool holds_elastic = cellHoldsElasticBody(s, c);
   double weight_sum = 0.0;
   int present = 0;
   for (int k = 0; k < s.n_materials; ++k) {
     if (!(s.alpha_ck0(c, k) > 0.0)) continue;  // an absent material's w is stale
     ++present;
-    weight_sum += volumeShareWeight(s, c, k, expanding, holds_elastic);
+    weight_sum += s.w_ck0(c, k);
   }
   if (present < 2 || !(weight_sum > 0.0)) return;
+  const double volume_start = s.vol_c0(c);
   double computed[kMaxMaterials];
   if (!(known && known->known)) relaxationVolumes(s, c, computed);
   const double* relax = known && known->known ? known->volume : computed;
@@ -185,11 +178,9 @@ KOKKOS_FORCEINLINE_FUNCTION void shareVolumeChange(const State& s, Index c, doub
   for (int k = 0; k < s.n_materials; ++k) {
     const double alpha_start = s.alpha_ck0(c, k);
     if (!(alpha_start > 0.0)) continue;
-    const double material_volume =
-        alpha_start * volume_start +
-        (volumeShareWeight(s, c, k, expanding, holds_elastic) / weight_sum) *
-            (volume - volume_start) +
-        relax[k];
+    const double material_volume = alpha_start * volume_start +
+                                   (s.w_ck0(c, k) / weight_sum) * (volume - volume_start) +
+                                   relax[k];
     // a material cannot be squeezed out: keep a sliver of its start volume
     const double kept = kMinVolumeKept * alpha_start * volume_start;
     const double alpha = (material_volume > kept ? material_volume : kept) / volume;
@@ -205,11 +196,14 @@ KOKKOS_INLINE_FUNCTION CellThermo cellThermo(const State& s, Index c, double vol
   int present = 0;
   for (int k = 0; k < s.n_materials; ++k) present += s.alpha_ck(c, k) > 0.0;
   // a trace below its threshold (none in a pure cell)
-  const double threshold = present > 1 ? s.alpha_trace : 0.0;
+  const bool holds_elastic = present > 1 && cellHoldsElasticBody(s, s.alpha_ck, c);
+  const auto threshold = [&](int k) {
+    return present > 1 ? traceFraction(s, k, holds_elastic) : 0.0;
+  };
   double active_alpha = 0.0, active_mass = 0.0;
   for (int k = 0; k < s.n_materials; ++k) {
     const double alpha = s.alpha_ck(c, k);
-    if (alpha > 0.0 && alpha >= threshold) {
+    if (alpha > 0.0 && alpha >= threshold(k)) {
       active_alpha += alpha;
       active_mass += s.m_ck(c, k);
     }
@@ -219,7 +213,7 @@ KOKKOS_INLINE_FUNCTION CellThermo cellThermo(const State& s, Index c, double vol
   SymMat3 deviator = identitySym(0.0);
   for (int k = 0; k < s.n_materials; ++k) {
     const double alpha = s.alpha_ck(c, k);
-    if (!(alpha > 0.0 && alpha >= threshold)) continue;
+    if (!(alpha > 0.0 && alpha >= threshold(k))) continue;
     const MaterialParams& material = s.materials(k);
     const double mass = s.m_ck(c, k);
     const double rho = mass / (alpha * volume);
@@ -263,7 +257,7 @@ KOKKOS_INLINE_FUNCTION CellThermo cellThermo(const State& s, Index c, double vol
     deviator = scale * deviator;
     for (int k = 0; k < s.n_materials; ++k) {
       const double alpha = s.alpha_ck(c, k);
-      if (alpha > 0.0 && alpha < threshold) {
+      if (alpha > 0.0 && alpha < threshold(k)) {
         s.p_ck(c, k) = mix.pressure;
         // no say in the volume change either: the gas trace in an aluminium
         // cell kept the w = alpha / (gamma p) of its near-vacuum past and took

@@ -1232,13 +1232,9 @@ struct MixedCellBudget {
 KOKKOS_FORCEINLINE_FUNCTION void ownVolumeRatios(const State& s, Index c, double volume_change,
                                                  double own_ratio[], StageRelaxation& relaxation) {
   const bool equal_strain = s.closure == MixtureClosure::EqualStrain;
-  // compressibility weights of the step start (none for a fluid's tail in an
-  // expansion, geometry.hpp volumeShareWeight)
-  const bool expanding = volume_change > 0.0;
-  const bool holds_elastic = !equal_strain && cellHoldsElasticBody(s, c);
-  double weight_sum = 0.0;
+  double weight_sum = 0.0;  // compressibility weights of the step start
   for (int k = 0; k < s.n_materials && !equal_strain; ++k) {
-    if (s.alpha_ck(c, k) > 0.0) weight_sum += volumeShareWeight(s, c, k, expanding, holds_elastic);
+    if (s.alpha_ck(c, k) > 0.0) weight_sum += s.w_ck0(c, k);
   }
   double* relax = relaxation.volume;
   if (equal_strain) {
@@ -1250,9 +1246,7 @@ KOKKOS_FORCEINLINE_FUNCTION void ownVolumeRatios(const State& s, Index c, double
   for (int k = 0; k < s.n_materials; ++k) {
     if (!(s.alpha_ck(c, k) > 0.0)) continue;
     // (equal strain: alpha^k of the volume change, the cell's rate)
-    const double share = weight_sum > 0.0
-                             ? volumeShareWeight(s, c, k, expanding, holds_elastic) / weight_sum
-                             : s.alpha_ck(c, k);
+    const double share = weight_sum > 0.0 ? s.w_ck0(c, k) / weight_sum : s.alpha_ck(c, k);
     const double start_volume = s.alpha_ck0(c, k) * s.vol_c0(c);
     const double own_change = share * volume_change + relax[k];
     own_ratio[k] = own_change < -(1.0 - kMinVolumeKept) * start_volume
@@ -1312,6 +1306,7 @@ KOKKOS_FORCEINLINE_FUNCTION void mixedCellBudget(const State& s, Index c, double
   ownVolumeRatios(s, c, dt_stage * s.vol_c(c) * trace(gradient), budget.own_ratio, relaxation);
   const Vec3 v0 = loadVec3(s.v_c0, c);
   budget.dissipation = s.m_c(c) * (e_new - (s.E_c0(c) - 0.5 * dot(v0, v0)));
+  const bool holds_elastic = cellHoldsElasticBody(s, s.alpha_ck, c);
   for (int k = 0; k < s.n_materials; ++k) {
     const double alpha = s.alpha_ck(c, k);
     if (!(alpha > 0.0)) continue;
@@ -1322,7 +1317,7 @@ KOKKOS_FORCEINLINE_FUNCTION void mixedCellBudget(const State& s, Index c, double
     } else if (s.e_ck0(c, k) > 0.0) {
       budget.gas_heat += s.m_ck(c, k) * s.e_ck0(c, k);
     }
-    if (alpha >= s.alpha_trace) {
+    if (alpha >= traceFraction(s, k, holds_elastic)) {
       const Mat3 gradient_k =
           materialGradient(s, c, k, true, gradient, budget.own_ratio[k], dt_stage);
       budget.dissipation -= materialWork(s, c, k, gradient_k, budget.own_ratio[k], dt_stage);
@@ -1406,10 +1401,11 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
   }
   bool deformation_known = false;
   Mat3 deformation = zeroMat();
+  const bool holds_elastic = mixed && cellHoldsElasticBody(s, s.alpha_ck, c);
   for (int k = 0; k < s.n_materials; ++k) {
     const double alpha = s.alpha_ck(c, k);
     if (!(alpha > 0.0)) continue;
-    const bool trace = mixed && alpha < s.alpha_trace;
+    const bool trace = mixed && alpha < traceFraction(s, k, holds_elastic);
     const double own_ratio = mixed ? budget.own_ratio[k] : 1.0;
     if (kEnergies && mixed) {
       const double work =

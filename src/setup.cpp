@@ -38,9 +38,9 @@ Config declareConfig(const Problem& problem, const std::string& mode) {
                    "but left out of the cell's stress and sound speed");
     config.addReal(
         "remap.alpha_tail", 1e-2, "-",
-        "volume fraction below which a fluid in a cell that also holds a Neo-Hookean solid is the "
-        "remap's diffusion tail inside the body: no part in the relaxation and no share of the "
-        "cell's expansion; docs/method.md §4.6");
+        "volume fraction below which a fluid in a cell that also holds a Neo-Hookean solid is a "
+        "trace (the remap's diffusion tail inside a body: it takes no part in the "
+        "relaxation); docs/method.md §4.6");
   }
   config.addChoice("numerics.order", "2", {"1", "2"},
                    "1: first order; 2: limited linear reconstruction + predictor-corrector");

@@ -135,8 +135,8 @@ TEST(RemapProblems, BeamTipFollowsTheLagrangeTip) {
 // plate's lower face) and back towards the straight plate: it gives back
 // its strain energy as kinetic energy (0.56 of the initial, 0.49 at the
 // paper's 100 x 40) and no gas gets inside it. Before the diffusion tail of
-// the gas inside the plate lost its share of expansions and its relaxation
-// (remap.alpha_tail, docs/method.md §4.6), it inflated where the plate is in tension,
+// the gas inside the plate was a trace (remap.alpha_tail, docs/method.md
+// §4.6), the relaxation inflated that tail where the plate is in tension,
 // cracks opened from its lower face from 3 us on, and only 0.26 of the
 // kinetic energy came back, with 9% of the plate's volume in gas.
 TEST(RemapProblems, BeamPlateAtTwiceTheResolutionStaysWhole) {
