@@ -110,6 +110,24 @@ KOKKOS_FORCEINLINE_FUNCTION bool isSolidBody(const State& s, Index c, int k, Vec
   return dot(normal, normal) > 0.5;  // zero where alpha^k had no gradient
 }
 
+// Material m's normal stress across its interface in cell c, tension
+// positive: -P^m, plus n.S^m.n for a solid body with an interface normal
+// (isSolidBody). What the relaxation balances between a mixed cell's
+// materials; `alpha`, `p` and `S` are the step start's there, the current
+// state's for the mixed_cells check (docs/method.md §4.9).
+template <class Alpha, class Pressure, class Deviator>
+KOKKOS_FORCEINLINE_FUNCTION double interfaceNormalStress(const State& s, const Alpha& alpha,
+                                                         const Pressure& p, const Deviator& S,
+                                                         Index c, int m) {
+  const double sigma = -p(c, m);
+  if (s.closure == MixtureClosure::EqualStrain) return sigma;
+  if (!takesOwnNormalStretch(s.materials(m), alpha(c, m), s.alpha_trace)) return sigma;
+  if (c >= Index(s.n_ck.extent(0))) return sigma;
+  const Vec3 normal{s.n_ck(c, m, 0), s.n_ck(c, m, 1), s.n_ck(c, m, 2)};
+  if (!(dot(normal, normal) > 0.5)) return sigma;  // zero where alpha^m had no gradient
+  return sigma + dot(normal, loadSym(S, c, m) * normal);
+}
+
 // relax^k of every material of cell c at once (zero for those that take no
 // part): each normal stress -P^m once, not once per pair and per caller.
 KOKKOS_INLINE_FUNCTION void relaxationVolumes(const State& s, Index c,
@@ -125,9 +143,7 @@ KOKKOS_INLINE_FUNCTION void relaxationVolumes(const State& s, Index c,
                  s.alpha_ck0(c, m) >= traceFraction(s, m, holds_elastic) && s.w_ck0(c, m) > 0.0;
     if (!relaxes[m]) continue;
     weight_sum += s.w_ck0(c, m);
-    sigma[m] = -s.p_ck0(c, m);
-    Vec3 n;
-    if (isSolidBody(s, c, m, n)) sigma[m] += dot(n, loadSym(s.S_ck0, c, m) * n);
+    sigma[m] = interfaceNormalStress(s, s.alpha_ck0, s.p_ck0, s.S_ck0, c, m);
   }
   double scale = 1.0;
   for (int m = 0; m < n_materials; ++m) {

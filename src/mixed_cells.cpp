@@ -119,6 +119,18 @@ MixedCellReport measureMixedCells(const FinalFields& fields,
   auto mixed = [&](Index c, int k) {
     return fields.alpha(c, k) >= kMixedAlphaLow && fields.alpha(c, k) <= 1.0 - kMixedAlphaLow;
   };
+  // Material k's normal stress across its interface less the cell's other
+  // materials' (their volume fractions' mean): zero where the closure's
+  // relaxation has balanced them.
+  auto imbalance = [&](Index c, int k) {
+    double others = 0.0, weight = 0.0;
+    for (int n = 0; n < n_materials; ++n) {
+      if (n == k || !(fields.alpha(c, n) > 0.0)) continue;
+      others += fields.alpha(c, n) * fields.sigma_n_k(c, n);
+      weight += fields.alpha(c, n);
+    }
+    return weight > 0.0 ? fields.sigma_n_k(c, k) - others / weight : 0.0;
+  };
   Range pure_p_all;  // every material's pure cells
   for (int k = 0; k < n_materials; ++k) {
     MaterialMixedCells m;
@@ -153,6 +165,9 @@ MixedCellReport measureMixedCells(const FinalFields& fields,
   }
   report.p_pure_all_lo = pure_p_all.empty() ? 0.0 : pure_p_all.lo;
   report.p_pure_all_hi = pure_p_all.empty() ? 0.0 : pure_p_all.hi;
+  // A material out of balance with its cell by more than M (pure_p_all's
+  // margin) is held there by the closure (docs/method.md §4.9).
+  const double balance_margin = std::max(std::abs(pure_p_all.lo), std::abs(pure_p_all.hi));
   for (int k = 0; k < n_materials; ++k) {
     MaterialMixedCells& m = report.materials[std::size_t(k)];
     const double rho_expanded = (1.0 - kStretchFraction) * m.rho_pure_median;
@@ -162,19 +177,34 @@ MixedCellReport measureMixedCells(const FinalFields& fields,
     for (Index c = 0; c < n_cells; ++c) {
       if (!fields.counts(c) || !mixed(c, k)) continue;
       const double p = fields.p_k(c, k);
+      const double out_of_balance = pure_p_all.empty() ? 0.0 : imbalance(c, k);
+      bool by_pressure = false, failed = false;  // beyond the pure cells; and held there
       // (without pure cells there is no density to compare a mixed cell's with)
       if (m.pure_cells > 0 && density(c, k) < rho_expanded) {
         const bool in_tension = p < p_stretched;
-        m.stretched += in_tension;
         m.expanded += !in_tension;
+        // in tension and pulling harder than the cell's other materials
+        const bool stretched = in_tension && out_of_balance > balance_margin;
+        m.stretched += stretched;
+        by_pressure = in_tension;
+        failed = stretched;
       }
       // Against every material's pure cells: a contact's pressure that only
       // the other body's pure cells reach is no outlier (docs/method.md §4.9).
-      if (!pure_p_all.empty()) m.pressure_outliers += pure_p_all.outside(p, 1.0);
+      if (!pure_p_all.empty() && pure_p_all.outside(p, 1.0)) {
+        const bool outlier = std::abs(out_of_balance) > balance_margin;
+        m.pressure_outliers += outlier;
+        by_pressure = true;
+        failed = failed || outlier;
+      }
+      // a body's own stress, balanced across its interface (a bent plate's
+      // outer fibre in tension along the plate): reported, not failed
+      m.in_balance += by_pressure && !failed;
     }
     m.stretched = countOverRanks(m.stretched, distributed);
     m.expanded = countOverRanks(m.expanded, distributed);
     m.pressure_outliers = countOverRanks(m.pressure_outliers, distributed);
+    m.in_balance = countOverRanks(m.in_balance, distributed);
   }
   Range pure_mixture;
   for (Index c = 0; c < n_cells; ++c) {
@@ -186,11 +216,17 @@ MixedCellReport measureMixedCells(const FinalFields& fields,
   for (Index c = 0; c < n_cells; ++c) {
     if (!fields.counts(c) || pure(c)) continue;
     ++report.impure_cells;
-    if (!pure_mixture.empty())
-      report.mixture_pressure_outliers += pure_mixture.outside(fields.p(c), 0.5);
+    if (pure_mixture.empty() || !pure_mixture.outside(fields.p(c), 0.5)) continue;
+    // held there: a material of the cell out of balance with the others
+    bool held = false;
+    for (int k = 0; k < n_materials; ++k)
+      held = held || (fields.alpha(c, k) > 0.0 && std::abs(imbalance(c, k)) > balance_margin);
+    report.mixture_pressure_outliers += held;
+    report.mixture_in_balance += !held;
   }
   report.impure_cells = countOverRanks(report.impure_cells, distributed);
   report.mixture_pressure_outliers = countOverRanks(report.mixture_pressure_outliers, distributed);
+  report.mixture_in_balance = countOverRanks(report.mixture_in_balance, distributed);
   return report;
 }
 
@@ -200,10 +236,11 @@ Check mixedCellsCheck(const MixedCellReport& report) {
   Check check("mixed_cells", worst, 0.0, kMixedCellFractionBound,
               "largest fraction of mixed cells out of their material's pure state (" + what +
                   "): each condensed material's stretched (density 2% below its pure cells' "
-                  "median at a pressure below their lowest and below 0: in tension; the "
-                  "expanded, hot at a higher pressure, are not counted) and pressure outliers "
-                  "(against every material's pure cells), and the mixture pressure outliers of "
-                  "the cells not pure (docs/method.md §4.9)");
+                  "median at a pressure below their lowest and below 0, held in tension out of "
+                  "balance with its cell's other materials; the expanded, hot at a higher "
+                  "pressure, and a body's own stress in balance are not counted) and pressure "
+                  "outliers (against every material's pure cells, out of balance), and the "
+                  "mixture pressure outliers of the cells not pure (docs/method.md §4.9)");
   check.source = "mixed-cell state";
   return check;
 }
@@ -214,17 +251,18 @@ std::string mixedCellsLine(const MixedCellReport& report) {
   for (const auto& m : report.materials) {
     if (!m.condensed) continue;
     std::snprintf(text, sizeof text,
-                  " material %d: %ld of %ld stretched, %ld expanded, %ld p outliers, p %.3g .. "
-                  "%.3g GPa (pure %.3g .. %.3g);",
+                  " material %d: %ld of %ld stretched, %ld expanded, %ld p outliers, %ld in "
+                  "balance, p %.3g .. %.3g GPa (pure %.3g .. %.3g);",
                   m.material, m.stretched, m.mixed_cells, m.expanded, m.pressure_outliers,
+                  m.in_balance,
                   m.p_mixed_lo / 1e9, m.p_mixed_hi / 1e9, m.p_pure_lo / 1e9, m.p_pure_hi / 1e9);
     line += text;
   }
   std::snprintf(text, sizeof text, " pure p of all materials %.3g .. %.3g GPa;",
                 report.p_pure_all_lo / 1e9, report.p_pure_all_hi / 1e9);
   line += text;
-  std::snprintf(text, sizeof text, " mixture p: %ld of %ld not pure outside",
-                report.mixture_pressure_outliers, report.impure_cells);
+  std::snprintf(text, sizeof text, " mixture p: %ld of %ld not pure outside (%ld more in balance)",
+                report.mixture_pressure_outliers, report.impure_cells, report.mixture_in_balance);
   return line + text;
 }
 

@@ -23,16 +23,22 @@ constexpr double kMixedCellFractionBound = 0.01;
 
 // Of one condensed material (not an ideal gas), over its mixed cells
 // (docs/method.md §4.9): `stretched` below (1 - kStretchFraction)
-// rho_pure_median at a pressure below both p_pure_lo and 0 (held in tension:
-// failed), `expanded` below that density otherwise (hot, thermally expanded:
-// reported, not failed); `pressure_outliers` with a material pressure outside
-// [min(lo, 0) - M, hi + M], lo .. hi the pressures of every material's pure
-// cells (MixedCellReport::p_pure_all_lo .. p_pure_all_hi), M = max(|lo|, |hi|).
+// rho_pure_median at a pressure below both p_pure_lo and 0, and held in
+// tension by the closure: its normal stress across the interface
+// (FinalFields::sigma_n_k) above its cell's other materials' by more than M
+// (failed); `expanded` below that density otherwise (hot, thermally
+// expanded: reported, not failed); `pressure_outliers` with a material
+// pressure outside [min(lo, 0) - M, hi + M], lo .. hi the pressures of every
+// material's pure cells (MixedCellReport::p_pure_all_lo .. p_pure_all_hi),
+// M = max(|lo|, |hi|), and a normal stress more than M from the other
+// materials' (failed); `in_balance` beyond the pure cells by its pressure
+// but in balance across its interface, a body's own stress (a bent plate's
+// outer fibre: reported, not failed).
 struct MaterialMixedCells {
   int material = 0;
   bool condensed = false;
   long mixed_cells = 0, pure_cells = 0;
-  long stretched = 0, expanded = 0, pressure_outliers = 0;
+  long stretched = 0, expanded = 0, pressure_outliers = 0, in_balance = 0;
   double rho_pure_median = 0.0;
   double p_pure_lo = 0.0, p_pure_hi = 0.0;    // material pressure over its pure cells
   double p_mixed_lo = 0.0, p_mixed_hi = 0.0;  // material pressure over its mixed cells
@@ -46,11 +52,13 @@ struct MaterialMixedCells {
 // All materials; the range of the material pressures of every material's pure
 // cells (the pressure outliers' reference); and the mixture pressure of the
 // cells that are not pure in any material against [min(p_lo, 0) - M/2, p_hi +
-// M/2], p_lo, p_hi and M = max |p| from the pure cells' mixture pressure.
+// M/2], p_lo, p_hi and M = max |p| from the pure cells' mixture pressure: an
+// outlier with a material out of balance with the others (as above), in
+// balance otherwise (reported).
 struct MixedCellReport {
   std::vector<MaterialMixedCells> materials;
   double p_pure_all_lo = 0.0, p_pure_all_hi = 0.0;
-  long impure_cells = 0, mixture_pressure_outliers = 0;
+  long impure_cells = 0, mixture_pressure_outliers = 0, mixture_in_balance = 0;
   double mixture_p_pure_lo = 0.0, mixture_p_pure_hi = 0.0;
   double mixtureOutlierFraction() const {
     return impure_cells > 0 ? double(mixture_pressure_outliers) / impure_cells : 0.0;

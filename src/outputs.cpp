@@ -10,9 +10,26 @@
 #include <iomanip>
 
 #include "decomposition.hpp"
+#include "kernels/geometry.hpp"
 #include "parallel.hpp"
 
 namespace lagremap {
+
+MatRealView interfaceNormalStresses(const State& state) {
+  const State s = state;
+  MatRealView sigma("lagremap::final::interface_normal_stress", s.alpha_ck.extent(0),
+                    s.alpha_ck.extent(1));
+  Kokkos::parallel_for(
+      "lagremap::final::interface_normal_stress",
+      Kokkos::RangePolicy<ExecSpace>(0, s.alpha_ck.extent(0)), KOKKOS_LAMBDA(const Index c) {
+        for (int k = 0; k < s.n_materials; ++k) {
+          sigma(c, k) = s.alpha_ck(c, k) > 0.0
+                            ? interfaceNormalStress(s, s.alpha_ck, s.p_ck, s.S_ck, c, k)
+                            : 0.0;
+        }
+      });
+  return sigma;
+}
 
 FinalFields copyFields(const Mesh& mesh, bool global, const State& state, double time) {
   FinalFields fields;
@@ -47,6 +64,7 @@ FinalFields copyFields(const Mesh& mesh, bool global, const State& state, double
   fields.e_k = cells(state.e_ck);
   fields.p_k = cells(state.p_ck);
   if (state.eps_ck.extent(0) > 0) fields.eps_k = cells(state.eps_ck);
+  if (state.n_materials > 1) fields.sigma_n_k = cells(interfaceNormalStresses(state));
   return fields;
 }
 

@@ -19,6 +19,10 @@ namespace lagremap {
 // connectivity in global node ids, on every rank.
 FinalFields copyFields(const Mesh& mesh, bool gather, const State& state, double time);
 
+// Every material's normal stress across its interface in every cell of the
+// current state (interfaceNormalStress), for the mixed_cells check.
+MatRealView interfaceNormalStresses(const State& state);
+
 // history.csv: the totals of every step, after the initial state's line. A
 // restart keeps the lines of the steps it does not redo. Creates the output
 // directory; a directory or file that cannot be written is ConfigError

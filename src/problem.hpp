@@ -143,6 +143,9 @@ struct FinalFields {
   MatRealView::HostMirror alpha;          // volume fraction of each material
   MatRealView::HostMirror m_k, e_k, p_k;  // mass, specific internal energy, pressure per material
   MatRealView::HostMirror eps_k;  // plastic strain per material (empty: no hypo-elastic solid)
+  // Each material's normal stress across its interface, tension positive, as
+  // the closure balances it (interfaceNormalStress; multi-material runs only).
+  MatRealView::HostMirror sigma_n_k;
   // The plastic strain of cell c: its materials' eps_p^k by mass (a fluid's
   // is 0; a light gas beside a metal barely dilutes the metal's).
   double plasticStrain(Index c) const {

@@ -140,6 +140,7 @@ void writeMixedCells(JsonWriter& json, const RunResult& result) {
         .value("stretched", m.stretched)
         .value("expanded", m.expanded)
         .value("pressure_outliers", m.pressure_outliers)
+        .value("in_balance", m.in_balance)
         .value("material_pressure_min", m.p_mixed_lo)
         .value("material_pressure_max", m.p_mixed_hi)
         .value("pure_pressure_min", m.p_pure_lo)
@@ -151,14 +152,21 @@ void writeMixedCells(JsonWriter& json, const RunResult& result) {
       .value("pure_pressure_max_all_materials", report.p_pure_all_hi)
       .value("impure_cells", report.impure_cells)
       .value("mixture_pressure_outliers", report.mixture_pressure_outliers)
+      .value("mixture_in_balance", report.mixture_in_balance)
       .value("note",
              "mixed: 0.01 <= alpha <= 0.99, pure: alpha > 0.999; stretched (fails the check): "
-             "material density below 0.98 of its pure cells' median and material pressure below "
-             "both its pure cells' lowest and 0; expanded (reported, not failed): that density "
-             "at a higher pressure; pressure outlier: material pressure outside "
+             "material density below 0.98 of its pure cells' median, material pressure below "
+             "both its pure cells' lowest and 0, and a normal stress across its interface above "
+             "its cell's other materials' by more than M; expanded (reported, not failed): that "
+             "density at a higher pressure; pressure outlier (fails): material pressure outside "
              "[min(lo, 0) - M, hi + M], lo .. hi the pressures of every material's pure cells "
-             "(pure_pressure_min_all_materials .. max), M = max(|lo|, |hi|); mixture: cells pure "
-             "in no material with p outside the pure cells' mixture range widened by M/2 "
+             "(pure_pressure_min_all_materials .. max), M = max(|lo|, |hi|), and its normal "
+             "stress across its interface more than M from its cell's other materials'; "
+             "in_balance (reported, not failed): in tension or outside that range by its pressure "
+             "but in balance across its interface (a body's own stress); mixture: cells pure "
+             "in no material with p outside the pure cells' mixture range widened by M/2 and a "
+             "material out of balance by more than M (mixture_in_balance: outside but in "
+             "balance) "
              "(docs/method.md 4.9)")
       .endObject();
 }

@@ -540,6 +540,7 @@ TEST(Checks, FromOwnedCellsAreTheSingleRankChecks) {
       EXPECT_EQ(mixed.p_pure_all_hi, mixed_one.p_pure_all_hi) << c.run.problem;
       EXPECT_EQ(mixed.impure_cells, mixed_one.impure_cells) << c.run.problem;
       EXPECT_EQ(mixed.mixture_pressure_outliers, mixed_one.mixture_pressure_outliers);
+      EXPECT_EQ(mixed.mixture_in_balance, mixed_one.mixture_in_balance) << c.run.problem;
       ASSERT_EQ(mixed.materials.size(), mixed_one.materials.size()) << c.run.problem;
       for (std::size_t k = 0; k < mixed_one.materials.size(); ++k) {
         const MaterialMixedCells &m = mixed.materials[k], &m_one = mixed_one.materials[k];
@@ -548,6 +549,7 @@ TEST(Checks, FromOwnedCellsAreTheSingleRankChecks) {
         EXPECT_EQ(m.stretched, m_one.stretched) << c.run.problem << " material " << k;
         EXPECT_EQ(m.expanded, m_one.expanded) << c.run.problem << " material " << k;
         EXPECT_EQ(m.pressure_outliers, m_one.pressure_outliers) << c.run.problem << " " << k;
+        EXPECT_EQ(m.in_balance, m_one.in_balance) << c.run.problem << " material " << k;
         EXPECT_EQ(m.rho_pure_median, m_one.rho_pure_median) << c.run.problem << " " << k;
         EXPECT_EQ(m.p_pure_lo, m_one.p_pure_lo) << c.run.problem << " material " << k;
         EXPECT_EQ(m.p_mixed_lo, m_one.p_mixed_lo) << c.run.problem << " material " << k;
