@@ -212,6 +212,10 @@ int runAndReport(const RunOptions& options) {
 
 }  // namespace
 
+int refuseInput(const std::string& message) {
+  return badInput(message);
+}
+
 int runCommandLine(int argc, char* argv[]) {
   CLI::App app{
       "lagremap: 3D cell-centred Lagrangian (and Lagrange-Remap) multi-material dynamics.\n"

@@ -3,8 +3,14 @@
 //   0 success, 1 a problem check failed, 2 bad input, 3 the run failed mid-way.
 #pragma once
 
+#include <string>
+
 namespace lagremap {
 
 int runCommandLine(int argc, char* argv[]);
+
+// Bad input found before the command line is read (the Kokkos flags): one
+// line "lagremap: error: MESSAGE" from the first rank; returns exit code 2.
+int refuseInput(const std::string& message);
 
 }  // namespace lagremap

@@ -37,6 +37,18 @@ class KokkosSession {
 const char* kokkosThreadsFlag();
 std::string withKokkosThreadsSpelling(const std::string& argument);
 
+// Kokkos 3.x's OpenMP back-end keeps the data of at most this many threads
+// (OpenMPExec::MAX_THREAD_COUNT) and crashes beyond it.
+constexpr long kMaxHostThreads = 512;
+
+// What is wrong with the first Kokkos flag of argv that takes a number
+// (--kokkos-threads, --kokkos-num-threads, --kokkos-numa, --kokkos-device-id,
+// --kokkos-num-devices: a count of at least 1, an index of at least 0, at
+// most kMaxHostThreads threads), or with OMP_NUM_THREADS (whatever the
+// flags: the back-end sizes its pool by it too); empty if nothing. The driver asks before Kokkos reads them:
+// Kokkos 3.4 aborts on a bad value with two dozen lines of dump.
+std::string kokkosArgumentsError(int argc, const char* const argv[]);
+
 // Whether the execution space runs on the host (OpenMP, Serial, Threads).
 bool executionSpaceIsHost();
 // The execution space for reports: "OpenMP, 2 threads" on the host,

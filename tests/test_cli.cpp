@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <cstdlib>
 #include <fstream>
 #include <iterator>
 #include <utility>
@@ -78,6 +79,15 @@ TEST(CommandLine, MalformedInputGivesExitCodeTwoAndOneLine) {
       // (an unset shell variable: not the default out/sod)
       {"--output '' --problem sod", "--output: must not be empty"},
       {"--restart '' --problem sod", "--restart: must not be empty"},
+      // Kokkos' own flags, checked before Kokkos reads them (it aborted with
+      // two dozen lines; beyond 512 threads its OpenMP back-end crashed)
+      {"--problem sod --kokkos-threads=-3", "--kokkos-threads=-3: must be at least 1"},
+      {"--problem sod --kokkos-threads=abc", "--kokkos-threads=abc: expects a whole number"},
+      {"--problem sod --kokkos-threads", "expects --kokkos-threads=N"},
+      {"--problem sod --kokkos-num-threads=-1", "--kokkos-num-threads=-1: must be at least 1"},
+      {"--problem sod --kokkos-device-id=-5", "--kokkos-device-id=-5: must be at least 0"},
+      {"--problem sod --kokkos-num-devices=-1", "--kokkos-num-devices=-1: must be at least 1"},
+      {"--problem sod --scale 0.25 --kokkos-threads=5000", "at most 512 threads"},
   };
   for (const BadInput& bad : table) {
     const std::string args = bad.args;
@@ -101,6 +111,34 @@ TEST(CommandLine, MalformedInputGivesExitCodeTwoAndOneLine) {
   for (const std::string& file : {nul_deck, latin1_deck}) {
     const auto result = runLagremap("--input " + file + out);
     EXPECT_NE(result.error.find("line 2:"), std::string::npos) << result.error;
+  }
+  std::filesystem::remove_all(dir);
+}
+
+// OMP_NUM_THREADS beyond what Kokkos' OpenMP back-end holds is bad input
+// too, even beside a thread-count flag (the back-end sizes its pool by it:
+// both crashed with a segmentation fault); at 512 it runs.
+TEST(CommandLine, TooManyOpenMPThreadsIsBadInput) {
+  const std::string dir = testing::scratchDir("cli_omp");
+  const char* saved = std::getenv("OMP_NUM_THREADS");
+  const std::string kept = saved ? saved : "";
+  setenv("OMP_NUM_THREADS", "100000", 1);
+  auto result = runLagremap("--problem sod --scale 0.25 --quiet --output " + dir + "/out");
+  EXPECT_EQ(result.exit_code, 2) << result.output;
+  EXPECT_EQ(lineCount(result.error), 1) << result.error;
+  EXPECT_NE(result.error.find("OMP_NUM_THREADS=100000: at most 512 threads"), std::string::npos)
+      << result.error;
+  result = runLagremap("--problem sod --scale 0.25 --quiet --kokkos-threads=1 --output " + dir +
+                       "/out");
+  EXPECT_EQ(result.exit_code, 2) << result.output;
+  setenv("OMP_NUM_THREADS", "512", 1);
+  result = runLagremap("--problem sod --scale 0.25 --quiet --kokkos-threads=2 --output " + dir +
+                       "/out");
+  EXPECT_EQ(result.exit_code, 0) << result.output;
+  if (saved) {
+    setenv("OMP_NUM_THREADS", kept.c_str(), 1);
+  } else {
+    unsetenv("OMP_NUM_THREADS");
   }
   std::filesystem::remove_all(dir);
 }
