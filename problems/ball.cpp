@@ -14,7 +14,6 @@
 // and the ball's centroid advances by less than in free flight.
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 
 #include "../src/diagnostics.hpp"
@@ -228,10 +227,11 @@ AxisPositions axisPositions(const Config& config, const FinalFields& fields,
 // crater at t_end) in out_dir.
 void writeBallCsvs(const std::string& out_dir, const FinalFields& fields, const BallGeometry& g,
                    double centroid_shift, double ball_velocity, const AxisPositions& axis) {
-  std::ofstream history(out_dir + "/ball_centroid.csv");
+  ResultFile history(out_dir + "/ball_centroid.csv");
   history << "t,ball_centroid_x\n" << std::setprecision(10);
   for (const auto& [t, x] : fields.probe) history << t << ',' << x << '\n';
-  std::ofstream csv(out_dir + "/ball_axis.csv");
+  history.write();
+  ResultFile csv(out_dir + "/ball_axis.csv");
   csv << std::setprecision(10) << "quantity,value,note\n"
       << "t," << fields.time << ",s\n"
       << "ball_centroid_shift," << centroid_shift << ",m (free flight: ball.vx t)\n"
@@ -242,6 +242,7 @@ void writeBallCsvs(const std::string& out_dir, const FinalFields& fields, const 
       << "crater_depth," << axis.crater_bottom - g.plate_lo_x << ",m\n"
       << "plate_rear_x," << axis.plate_rear << ",m (alpha_plate = 1/2 on the axis)\n"
       << "plate_rear_bulge," << axis.plate_rear - g.plate_hi_x << ",m\n";
+  csv.write();
 }
 
 ProblemResults finishBall(const Config& config, const FinalFields& fields,

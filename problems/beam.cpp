@@ -13,7 +13,6 @@
 // inertia (Timoshenko), which lengthen the period of this thick plate by ~10%.
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 #include <sstream>
 
@@ -168,10 +167,10 @@ double tipDisplacement(const Mesh& mesh, const State& state) {
 
 ProblemResults finishBeam(const Config& config, const FinalFields& fields,
                           const std::string& out_dir) {
-  std::ofstream csv;
-  if (!out_dir.empty()) csv.open(out_dir + "/beam_tip.csv");
+  ResultFile csv(out_dir.empty() ? "" : out_dir + "/beam_tip.csv");
   csv << "t,tip_displacement_y\n" << std::setprecision(10);
   for (const auto& [t, y] : fields.probe) csv << t << ',' << y << '\n';
+  csv.write();
   // The tip starts moving up: its first downward crossing comes once it has
   // been up (above half its largest excursion: the remap's end-face measure
   // starts a few microns below zero as the corner cells fill and empty, and

@@ -18,7 +18,6 @@
 // bar, or along the slab's mesh diagonal (i = j), with their exact densities.
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 #include <sstream>
 #include <string>
@@ -206,10 +205,10 @@ ProblemResults finishBump(const Config& config, const FinalFields& fields,
           << fields.p(c) << '\n';
     }
   }
-  std::ofstream csv;
-  if (!out_dir.empty()) csv.open(out_dir + "/bump_profile.csv");
+  ResultFile csv(out_dir.empty() ? "" : out_dir + "/bump_profile.csv");
   csv << "x,y,rho,rho_exact,vx,vy,p\n";
   writeRowsInCellOrder(row.str(), fields.distributed, csv);
+  csv.write();
   const L1Errors errors = flowL1Errors(
       fields, b.box, b.v0, b.p0, [&](Index c) { return exact[std::size_t(c)]; },
       "the density the exact mean over each cell of the initial profile moved by V t");

@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 
 #include "../src/problem.hpp"
 
@@ -80,13 +79,13 @@ ProblemResults finishPile(const Config& config, const FinalFields& fields,
     lateral = parallel::max(lateral);
     axial = parallel::max(axial);
   }
-  std::ofstream csv;
-  if (!out_dir.empty()) csv.open(out_dir + "/pile_wall_stress.csv");
+  ResultFile csv(out_dir.empty() ? "" : out_dir + "/pile_wall_stress.csv");
   csv << "t,sigma_xx,exact\n";
   for (const auto& [t, value] : fields.probe) {
     const double exact = (t > transit && t < 3 * transit) ? plateau : 0.0;
     csv << t << ',' << value << ',' << exact << '\n';
   }
+  csv.write();
   std::vector<Check> checks = {
       {"wall_stress_before", meanOver(fields.probe, 0.25 * transit, 0.75 * transit), 0.0, tol,
        "mean wall sigma_xx on [L/4c, 3L/4c] (exact 0)"},

@@ -1,6 +1,5 @@
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 #include <sstream>
 #include <string>
@@ -12,6 +11,7 @@
 #include "../src/boundary_keys.hpp"
 #include "../src/diagnostics.hpp"
 #include "../src/materials.hpp"
+#include "../src/outputs.hpp"
 #include "../src/problem.hpp"
 
 namespace lagremap {
@@ -593,10 +593,14 @@ void writeCellOutlines(const std::string& path, const FinalFields& fields) {
     }
     rows << fields.rho(c) << '\n';
   }
-  std::ofstream csv;
-  if (!path.empty()) csv.open(path);
+  ResultFile csv(path);
   csv << "x0,y0,x1,y1,x2,y2,x3,y3,density\n";
   writeRowsInCellOrder(rows.str(), fields.distributed, csv);
+  csv.write();
+}
+
+void ResultFile::write() const {
+  if (!path_.empty()) writeTextFile(path_, str());
 }
 
 void writeRowsInCellOrder(const std::string& keyed_lines, bool distributed, std::ostream& out) {

@@ -14,7 +14,6 @@
 // case (n/a for another).
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 #include <sstream>
 
@@ -217,10 +216,10 @@ void writeSymmetryPlane(const std::string& path, const FinalFields& fields, doub
     }
     rows << fields.alpha(c, 0) << ',' << fields.plasticStrain(c) << '\n';
   }
-  std::ofstream csv;
-  if (!path.empty()) csv.open(path);
+  ResultFile csv(path);
   csv << "x0,y0,x1,y1,x2,y2,x3,y3,alpha_cu,plastic_strain\n";
   writeRowsInCellOrder(rows.str(), fields.distributed, csv);
+  csv.write();
 }
 
 ProblemResults finishRod(const Config& config, const FinalFields& fields,
@@ -228,10 +227,10 @@ ProblemResults finishRod(const Config& config, const FinalFields& fields,
   const RodGeometry rod = readRod(config);
   const bool remap = config.remapMode();
   writeSymmetryPlane(out_dir.empty() ? "" : out_dir + "/rod_plane_z0.csv", fields, rod.length);
-  std::ofstream history;
-  if (!out_dir.empty()) history.open(out_dir + "/rod_length.csv");
+  ResultFile history(out_dir.empty() ? "" : out_dir + "/rod_length.csv");
   history << "t,length\n";
   for (const auto& [t, value] : fields.probe) history << t << ',' << value << '\n';
+  history.write();
   const double length = remap                  ? alphaFront(fields, 0)
                         : fields.probe.empty() ? NAN
                                                : fields.probe.back().second;

@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 #include <optional>
 #include <sstream>
@@ -190,8 +189,7 @@ RadialBins radialProfile(const FinalFields& fields, double size, int n_bins,
       sums[std::size_t(n_bins + bin)] += fields.vol(c);
     }
   }
-  std::ofstream radial;
-  if (!out_dir.empty()) radial.open(out_dir + "/radial.csv");
+  ResultFile radial(out_dir.empty() ? "" : out_dir + "/radial.csv");
   radial << "r,rho,p,speed,rho_exact,p_exact,speed_exact\n";
   if (fields.distributed) {
     ExactSum::sumOverRanks(sums);
@@ -199,6 +197,7 @@ RadialBins radialProfile(const FinalFields& fields, double size, int n_bins,
   } else {
     radial << rows.str();
   }
+  radial.write();
   RadialBins bins{std::vector<double>(n_bins), std::vector<double>(n_bins)};
   for (int b = 0; b < n_bins; ++b) {
     bins.mass[b] = sums[std::size_t(b)].value();
@@ -312,10 +311,10 @@ void writeSliceZ(const std::string& out_dir, const FinalFields& fields) {
     }
     rows << '\n';
   }
-  std::ofstream slice;
-  if (!out_dir.empty()) slice.open(out_dir + "/slice_z.csv");
+  ResultFile slice(out_dir.empty() ? "" : out_dir + "/slice_z.csv");
   slice << "x,y,rho,p,speed,x0,y0,x1,y1,x2,y2,x3,y3\n";
   writeRowsInCellOrder(rows.str(), fields.distributed, slice);
+  slice.write();
 }
 
 // L1 errors of density, velocity and pressure against the exact solution

@@ -13,7 +13,6 @@
 // walls all round; the radii are read from the beryllium volume fraction.
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 
 #include "../kernels/eos.hpp"
@@ -223,8 +222,7 @@ double finalInwardSpeed(const FinalFields& fields, double t_end) {
 // from it (shell area of the initial radii; remap: also of the beryllium area).
 void writeRadii(const std::string& out_dir, const FinalFields& fields, bool remap, double ri0,
                 double ro0, double shell_area) {
-  std::ofstream csv;
-  if (!out_dir.empty()) csv.open(out_dir + "/shell_radii.csv");
+  ResultFile csv(out_dir.empty() ? "" : out_dir + "/shell_radii.csv");
   csv << "t,inner_radius,outer_radius_incompressible" << (remap ? ",outer_radius_be_area\n" : "\n")
       << std::setprecision(10);
   for (const auto& [t, r] : fields.probe) {
@@ -232,6 +230,7 @@ void writeRadii(const std::string& out_dir, const FinalFields& fields, bool rema
     if (remap) csv << ',' << std::sqrt(r * r + shell_area);
     csv << '\n';
   }
+  csv.write();
 }
 
 // Smallest and largest inner radius at t_end (NaN where a ray finds none).
@@ -244,8 +243,7 @@ struct RadiusRange {
 RadiusRange contourInnerRadii(const Config& config, const FinalFields& fields,
                               const std::string& out_dir) {
   RadiusRange range;
-  std::ofstream contour;
-  if (!out_dir.empty()) contour.open(out_dir + "/shell_contour.csv");
+  ResultFile contour(out_dir.empty() ? "" : out_dir + "/shell_contour.csv");
   contour << "theta,inner_radius,outer_radius\n" << std::setprecision(10);
   const double z_mid = 0.5 * config.real("geometry.thickness");
   constexpr int kRays = 32;
@@ -265,6 +263,7 @@ RadiusRange contourInnerRadii(const Config& config, const FinalFields& fields,
     range.lo = std::isnan(inner) ? NAN : std::min(range.lo, inner);
     range.hi = std::isnan(inner) ? NAN : std::max(range.hi, inner);
   }
+  contour.write();
   return range;
 }
 

@@ -3,7 +3,6 @@
 // Riemann solution, and transverse velocities at round-off (docs/method.md §A1).
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 #include <sstream>
 #include <utility>
@@ -123,10 +122,10 @@ ProblemResults finishSod(const Config& config, const FinalFields& fields,
     speed = parallel::max(speed);
   }
   const double l1_rho = l1[0].value(), l1_u = l1[1].value(), l1_p = l1[2].value();
-  std::ofstream csv;
-  if (!out_dir.empty()) csv.open(out_dir + "/sod_profile.csv");
+  ResultFile csv(out_dir.empty() ? "" : out_dir + "/sod_profile.csv");
   csv << "x,rho,u,p,e,rho_exact,u_exact,p_exact,e_exact\n";
   writeRowsInCellOrder(row.str(), fields.distributed, csv);
+  csv.write();
   const long nx = config.integer("mesh.nx");
   const int order = int(config.integer("numerics.order"));
   double bound = config.real("check.l1_density_bound");

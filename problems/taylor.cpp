@@ -8,7 +8,6 @@
 // alpha = 0.5 contour of aluminium on the bar's axis (paper: 4.63).
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 
 #include "../src/exact_sum.hpp"
@@ -118,10 +117,10 @@ ProblemResults finishTaylor(const Config& config, const FinalFields& fields,
   const double bar_mass = readHypoSolid(config, "al", "Al").rho0 * config.real("geometry.length") *
                           config.real("geometry.height") * config.real("geometry.thickness");
   const double kinetic0 = 0.5 * bar_mass * vx * vx;
-  std::ofstream history;
-  if (!out_dir.empty()) history.open(out_dir + "/taylor_length.csv");
+  ResultFile history(out_dir.empty() ? "" : out_dir + "/taylor_length.csv");
   history << "t,length\n";
   for (const auto& [t, value] : fields.probe) history << t << ',' << value << '\n';
+  history.write();
   const bool remap = config.remapMode();
   const double final_length = remap                  ? materialFrontX(fields, 0, 0.0)
                               : fields.probe.empty() ? NAN

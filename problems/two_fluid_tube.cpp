@@ -13,7 +13,6 @@
 // and no negative material pressure of an ideal gas.
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 #include <sstream>
 #include <string>
@@ -207,10 +206,10 @@ ProblemResults finishTube(const Config& config, const FinalFields& fields,
     star_n = sums[5];
     gas_p_min = parallel::min(gas_p_min);
   }
-  std::ofstream csv;
-  if (!out_dir.empty()) csv.open(out_dir + "/tube_profile.csv");
+  ResultFile csv(out_dir.empty() ? "" : out_dir + "/tube_profile.csv");
   csv << "x,rho,u,p,alpha_left,rho_exact,u_exact,p_exact\n";
   writeRowsInCellOrder(row.str(), fields.distributed, csv);
+  csv.write();
 
   const double n_star = star_n.value();
   const double p_star = n_star > 0 ? star_p.value() / n_star : NAN;

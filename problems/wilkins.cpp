@@ -16,7 +16,6 @@
 // GPa, rho = 2985.6) and the elastic precursor ahead of it (u = 35.2 m/s).
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 #include <sstream>
 #include <utility>
@@ -158,8 +157,7 @@ WilkinsProfile profileAlongX(const FinalFields& fields, const std::string& out_d
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     return records[kWidth * a] < records[kWidth * b];
   });
-  std::ofstream csv;
-  if (!out_dir.empty()) csv.open(out_dir + "/wilkins_profile.csv");
+  ResultFile csv(out_dir.empty() ? "" : out_dir + "/wilkins_profile.csv");
   csv << "x,rho,u,p,sigma_xx,alpha_al,rho_al\n" << std::setprecision(10);
   WilkinsProfile profile;
   for (std::size_t i : order) {
@@ -172,6 +170,7 @@ WilkinsProfile profileAlongX(const FinalFields& fields, const std::string& out_d
     csv << r[1] << ',' << r[2] << ',' << r[3] << ',' << r[4] << ',' << r[5] << ',' << r[6] << ','
         << r[7] << '\n';
   }
+  csv.write();
   return profile;
 }
 

@@ -8,12 +8,31 @@
 #include <cstring>
 #include <filesystem>
 #include <iomanip>
+#include <stdexcept>
 
 #include "decomposition.hpp"
 #include "kernels/geometry.hpp"
 #include "parallel.hpp"
 
 namespace lagremap {
+
+void writeTextFile(const std::string& path, const std::string& text) {
+  errno = 0;
+  std::FILE* file = std::fopen(path.c_str(), "w");
+  if (file == nullptr)
+    throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
+  const bool written = std::fwrite(text.data(), 1, text.size(), file) == text.size();
+  const int write_errno = errno;
+  const bool flushed = std::fflush(file) == 0;
+  const int flush_errno = errno;
+  const bool closed = std::fclose(file) == 0;
+  if (!(written && flushed && closed)) {
+    const int error = !written ? write_errno : !flushed ? flush_errno : errno;
+    std::remove(path.c_str());  // no cut file left to be taken for a whole one
+    throw std::runtime_error("cannot write " + path + ": " +
+                             std::strerror(error ? error : EIO));
+  }
+}
 
 MatRealView interfaceNormalStresses(const State& state) {
   const State s = state;

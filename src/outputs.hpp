@@ -23,6 +23,11 @@ FinalFields copyFields(const Mesh& mesh, bool gather, const State& state, double
 // current state (interfaceNormalStress), for the mixed_cells check.
 MatRealView interfaceNormalStresses(const State& state);
 
+// Writes `text` to `path` whole, or throws naming the file and why (a
+// directory standing there, a full disk or no inodes left): a result file is
+// never silently missing or cut.
+void writeTextFile(const std::string& path, const std::string& text);
+
 // history.csv: the totals of every step, after the initial state's line. A
 // restart keeps the lines of the steps it does not redo. Creates the output
 // directory; a directory or file that cannot be written is ConfigError

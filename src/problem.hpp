@@ -4,6 +4,7 @@
 
 #include <functional>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -261,6 +262,20 @@ void fillMaterialRegions(ProblemSetup& setup, const MaterialRegions& regions,
 // writes them, a piece of each rank's at a time (parallel::writeMergedOnRoot;
 // collective), and `out` is only written on rank 0.
 void writeRowsInCellOrder(const std::string& keyed_lines, bool distributed, std::ostream& out);
+
+// A result file of a problem's (its CSVs): the text is gathered here, then
+// written whole by write(), which throws naming the file when it cannot be
+// (writeTextFile: a directory standing there, a full disk): never silently
+// missing or cut. With no path (a rank other than the first, or a run
+// without files) write() does nothing.
+class ResultFile : public std::ostringstream {
+ public:
+  explicit ResultFile(std::string path) : path_(std::move(path)) {}
+  void write() const;
+
+ private:
+  std::string path_;
+};
 // Records (a few numbers each) that every rank made from its owned cells:
 // all ranks' on every rank, in rank order, when the fields are distributed
 // (collective); otherwise `mine`. For the few cells a check reads along a

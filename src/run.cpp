@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <iomanip>
 #include <memory>
+#include <sstream>
 
 #include "exact_sum.hpp"
 #include "kernels/hex.hpp"
@@ -195,9 +195,10 @@ RunResult resultOf(const Simulation& simulation) {
 }
 
 void writeProbe(const std::string& path, const Problem& problem, const FinalFields& fields) {
-  std::ofstream probe_csv(path);
+  std::ostringstream probe_csv;
   probe_csv << "t," << problem.probe_name << '\n' << std::setprecision(12);
   for (const auto& [time, value] : fields.probe) probe_csv << time << ',' << value << '\n';
+  writeTextFile(path, probe_csv.str());
 }
 
 }  // namespace

@@ -1,10 +1,11 @@
 #include "summary.hpp"
 
-#include <fstream>
+#include <sstream>
 
 #include "json.hpp"
 #include "kernels/hex.hpp"
 #include "kokkos_session.hpp"
+#include "outputs.hpp"
 #include "parallel.hpp"
 
 namespace lagremap {
@@ -207,7 +208,7 @@ void writeChecksAndKeys(JsonWriter& json, const Config& config, const RunResult&
 }  // namespace
 
 void writeSummary(const std::string& path, const Simulation& simulation, const RunResult& result) {
-  std::ofstream out(path);
+  std::ostringstream out;
   JsonWriter json(out);
   json.beginObject();
   writeRunAndSpeed(json, simulation, result);
@@ -218,6 +219,7 @@ void writeSummary(const std::string& path, const Simulation& simulation, const R
   writeL1Errors(json, result);
   writeChecksAndKeys(json, simulation.options().config, result);
   json.endObject();
+  writeTextFile(path, out.str());
 }
 
 }  // namespace lagremap

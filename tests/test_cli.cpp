@@ -143,6 +143,23 @@ TEST(CommandLine, TooManyOpenMPThreadsIsBadInput) {
   std::filesystem::remove_all(dir);
 }
 
+// A result file that cannot be written is a failure, never a silent exit 0:
+// with a directory standing where summary.json or the problem's CSV goes, the run
+// exits 3 with one line naming the file.
+TEST(CommandLine, AResultFileThatCannotBeWrittenFailsTheRun) {
+  const std::string dir = testing::scratchDir("cli_unwritable");
+  for (const char* file : {"summary.json", "sod_profile.csv"}) {
+    const std::string out = dir + "/" + file + "_blocked";
+    std::filesystem::create_directories(out + "/" + file);
+    const auto result = runLagremap("--problem sod --scale 0.25 --quiet --output " + out);
+    EXPECT_EQ(result.exit_code, 3) << file << "\n" << result.output;
+    EXPECT_EQ(lineCount(result.error), 1) << result.error;
+    EXPECT_NE(result.error.find("cannot write " + out + "/" + file), std::string::npos)
+        << result.error;
+  }
+  std::filesystem::remove_all(dir);
+}
+
 // A value of 100 kB (a pasted file, a runaway script) is cut in the error
 // line to its first 60 characters and "...", whatever option, key or deck
 // carried it; the rest of the line still says what was wrong with it.
