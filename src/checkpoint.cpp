@@ -338,6 +338,9 @@ void writeCheckpoint(const std::string& path, const Mesh& mesh, const State& sta
 
 LoopState readCheckpoint(const std::string& path, Mesh& mesh, State& state,
                          const std::string& problem, const std::string& mode) {
+  if (std::filesystem::is_directory(path)) {
+    throw std::runtime_error("checkpoint '" + path + "' is a directory, not a checkpoint file");
+  }
   if (!std::filesystem::is_regular_file(path)) {
     throw std::runtime_error("checkpoint '" + path + "' does not exist");
   }

@@ -53,19 +53,26 @@ CLI::Validator nonEmpty() {
       [](std::string& text) -> std::string { return text.empty() ? "must not be empty" : ""; }, "");
 }
 
-// CLI11's message on one line a user can read: it quotes what was typed as
-// it was typed, so each word is cut as our own messages cut a value, and the
-// line after 200 characters (a long value with spaces in it).
-std::string oneReadableLine(const CLI::ParseError& error) {
-  std::istringstream words(error.what());
+// A message a user can read: it may quote what was typed, or a path, as it
+// was, so each word is cut as our own messages cut a value.
+std::string withWordsCut(const std::string& message) {
+  std::istringstream words(message);
   std::string line, word;
   while (words >> word) line += (line.empty() ? "" : " ") + abbreviated(word);
+  return line;
+}
+
+// CLI11's message on one line a user can read: its words cut, and the line
+// after 200 characters (a long value with spaces in it).
+std::string oneReadableLine(const CLI::ParseError& error) {
+  const std::string line = withWordsCut(error.what());
   return line.size() <= 200 ? line : line.substr(0, 200) + "...";
 }
 
 int badInput(const std::string& message) {
   // Every rank finds the same bad input; one says so.
-  if (parallel::isRoot()) std::fprintf(stderr, "lagremap: error: %s\n", message.c_str());
+  if (parallel::isRoot())
+    std::fprintf(stderr, "lagremap: error: %s\n", withWordsCut(message).c_str());
   return kExitBadInput;
 }
 
@@ -256,10 +263,11 @@ int runCommandLine(int argc, char* argv[]) {
   } catch (const ConfigError& error) {
     return badInput(error.what());
   } catch (const parallel::AgreedError& error) {
-    if (parallel::isRoot()) std::fprintf(stderr, "lagremap: error: %s\n", error.what());
+    if (parallel::isRoot())
+      std::fprintf(stderr, "lagremap: error: %s\n", withWordsCut(error.what()).c_str());
     return kExitRunFailed;
   } catch (const std::exception& error) {  // (perhaps this rank's alone: each says so)
-    std::fprintf(stderr, "lagremap: error: %s\n", error.what());
+    std::fprintf(stderr, "lagremap: error: %s\n", withWordsCut(error.what()).c_str());
     return kExitRunFailed;
   }
 }

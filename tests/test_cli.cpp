@@ -115,6 +115,23 @@ TEST(CommandLine, MalformedInputGivesExitCodeTwoAndOneLine) {
   std::filesystem::remove_all(dir);
 }
 
+// A path of 5,000 characters in an error is cut like a long value (the line
+// was 5,070 characters), and --restart given a directory says so (it said
+// "does not exist").
+TEST(CommandLine, ALongPathIsCutAndADirectoryIsNoCheckpoint) {
+  const std::string dir = testing::scratchDir("cli_paths");
+  const std::string long_path = dir + "/" + std::string(5000, 'a');
+  auto result = runLagremap("--problem sod --restart " + long_path + " --output " + dir + "/out");
+  EXPECT_EQ(result.exit_code, 2) << result.output;
+  EXPECT_EQ(lineCount(result.error), 1) << result.error;
+  EXPECT_LT(result.error.size(), 300u) << result.error.size();
+  result = runLagremap("--problem sod --restart " + dir + " --output " + dir + "/out");
+  EXPECT_EQ(result.exit_code, 2) << result.output;
+  EXPECT_NE(result.error.find("is a directory, not a checkpoint file"), std::string::npos)
+      << result.error;
+  std::filesystem::remove_all(dir);
+}
+
 // OMP_NUM_THREADS beyond what Kokkos' OpenMP back-end holds is bad input
 // too, even beside a thread-count flag (the back-end sizes its pool by it:
 // both crashed with a segmentation fault); at 512 it runs.
