@@ -53,26 +53,35 @@ CLI::Validator nonEmpty() {
       [](std::string& text) -> std::string { return text.empty() ? "must not be empty" : ""; }, "");
 }
 
-// A message a user can read: it may quote what was typed, or a path, as it
-// was, so each word is cut as our own messages cut a value.
-std::string withWordsCut(const std::string& message) {
+// Our own message with every word of more than 200 characters (a path, say)
+// cut to its first and last 60 (the file's name stays); a value the message
+// quotes is already cut (abbreviated).
+std::string withLongWordsCut(const std::string& message) {
+  constexpr std::size_t kLongWord = 200, kKept = 60;
   std::istringstream words(message);
   std::string line, word;
-  while (words >> word) line += (line.empty() ? "" : " ") + abbreviated(word);
+  while (words >> word) {
+    if (word.size() > kLongWord)
+      word = word.substr(0, kKept) + "..." + word.substr(word.size() - kKept);
+    line += (line.empty() ? "" : " ") + word;
+  }
   return line;
 }
 
-// CLI11's message on one line a user can read: its words cut, and the line
-// after 200 characters (a long value with spaces in it).
+// CLI11's message on one line a user can read: it quotes what was typed as
+// it was typed, so each word is cut as our own messages cut a value, and the
+// line after 200 characters (a long value with spaces in it).
 std::string oneReadableLine(const CLI::ParseError& error) {
-  const std::string line = withWordsCut(error.what());
+  std::istringstream words(error.what());
+  std::string line, word;
+  while (words >> word) line += (line.empty() ? "" : " ") + abbreviated(word);
   return line.size() <= 200 ? line : line.substr(0, 200) + "...";
 }
 
 int badInput(const std::string& message) {
   // Every rank finds the same bad input; one says so.
   if (parallel::isRoot())
-    std::fprintf(stderr, "lagremap: error: %s\n", withWordsCut(message).c_str());
+    std::fprintf(stderr, "lagremap: error: %s\n", withLongWordsCut(message).c_str());
   return kExitBadInput;
 }
 
@@ -264,10 +273,10 @@ int runCommandLine(int argc, char* argv[]) {
     return badInput(error.what());
   } catch (const parallel::AgreedError& error) {
     if (parallel::isRoot())
-      std::fprintf(stderr, "lagremap: error: %s\n", withWordsCut(error.what()).c_str());
+      std::fprintf(stderr, "lagremap: error: %s\n", withLongWordsCut(error.what()).c_str());
     return kExitRunFailed;
   } catch (const std::exception& error) {  // (perhaps this rank's alone: each says so)
-    std::fprintf(stderr, "lagremap: error: %s\n", withWordsCut(error.what()).c_str());
+    std::fprintf(stderr, "lagremap: error: %s\n", withLongWordsCut(error.what()).c_str());
     return kExitRunFailed;
   }
 }

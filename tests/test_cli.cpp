@@ -115,7 +115,7 @@ TEST(CommandLine, MalformedInputGivesExitCodeTwoAndOneLine) {
   std::filesystem::remove_all(dir);
 }
 
-// A path of 5,000 characters in an error is cut like a long value (the line
+// A path of 5,000 characters in an error is cut to its first and last 60 (the line
 // was 5,070 characters), and --restart given a directory says so (it said
 // "does not exist").
 TEST(CommandLine, ALongPathIsCutAndADirectoryIsNoCheckpoint) {
