@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "kokkos_session.hpp"
+#include "stop_signals.hpp"
 #include "parallel.hpp"
 #include "run.hpp"
 #include "timers.hpp"
@@ -215,8 +216,18 @@ RunOptions runOptions(const Problem& problem, CommandLine& line, Config config, 
 // Runs and reports (rank 0); every rank returns the same exit code.
 int runAndReport(const RunOptions& options) {
   const RunResult result = runProblem(options);
-  const int code = result.failed ? kExitRunFailed : result.checksPass() ? 0 : kExitChecksFailed;
+  const int code = result.stopped_by ? kExitStopped
+                   : result.failed   ? kExitRunFailed
+                   : result.checksPass() ? 0
+                                         : kExitChecksFailed;
   if (!parallel::isRoot()) return code;
+  if (result.stopped_by) {
+    std::fprintf(stderr,
+                 "lagremap: %s; checkpoint and outputs written to %s (continue with --restart "
+                 "%s/checkpoint.h5)\n",
+                 result.failure.c_str(), options.output_dir.c_str(), options.output_dir.c_str());
+    return code;
+  }
   if (result.failed) {
     std::fprintf(stderr, "lagremap: run failed: %s; last good state (t = %.6g) written to %s\n",
                  result.failure.c_str(), result.time, options.output_dir.c_str());

@@ -5,6 +5,7 @@
 #include "floating_point.hpp"
 #include "kokkos_session.hpp"
 #include "parallel.hpp"
+#include "stop_signals.hpp"
 
 int main(int argc, char* argv[]) {
   lagremap::flushDenormalsToZero();  // before Kokkos starts its threads, which inherit it
@@ -13,5 +14,6 @@ int main(int argc, char* argv[]) {
   if (!bad_kokkos_flag.empty()) return lagremap::refuseInput(bad_kokkos_flag);
   lagremap::KokkosSession kokkos(argc, argv);
   if (kokkos.printedKokkosHelp()) return 0;
+  lagremap::installStopSignals();
   return lagremap::runCommandLine(argc, argv);
 }

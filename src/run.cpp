@@ -165,6 +165,7 @@ RunResult resultOf(const Simulation& simulation) {
   result.wall_seconds = simulation.wallSeconds();
   result.failed = simulation.failed();
   result.failure = simulation.failure();
+  result.stopped_by = simulation.stoppedBy();
   result.steps = simulation.step();
   result.time = simulation.time();
   const long steps_run = simulation.step() - simulation.startState().step;  // a restart continues

@@ -49,6 +49,7 @@ struct RunResult {
   double cell_steps_per_second = 0.0;
   bool failed = false;
   std::string failure;
+  int stopped_by = 0;  // the signal that stopped it (Simulation::stoppedBy), 0 for none
   std::vector<Check> checks;
   std::optional<L1Errors> l1_errors;  // against the exact solution, where the problem has one
   double drift_mass = 0.0, drift_momentum = 0.0, drift_energy = 0.0;

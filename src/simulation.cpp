@@ -8,6 +8,7 @@
 
 #include "diagnostics.hpp"
 #include "parallel.hpp"
+#include "stop_signals.hpp"
 #include "setup.hpp"
 
 namespace lagremap {
@@ -122,6 +123,7 @@ void Simulation::run() {
   const auto wall_start = std::chrono::steady_clock::now();
   const long reductions_start = parallel::reductionCount();
   while (loop_.time < t_end_) {
+    if (stopAsked()) break;
     const TimeStepChoice choice = chooseTimeStep();
     failure_ = stopReason(choice);
     if (failed()) break;
@@ -168,6 +170,17 @@ void Simulation::refuseAFirstStepBelowTheFloor() const {
       " s, is below numerics.dt_min_fraction x t_end = " + shortNumber(numerics_.dt_min) +
       " s; at dt_min_fraction " + shortNumber(fraction) + ", t_end can be at most " +
       shortNumber(first.dt / fraction) + " s");
+}
+
+// A stop signal on any rank stops every rank at the end of the same step
+// (one reduction a step on several ranks, none on one).
+bool Simulation::stopAsked() {
+  const int signal = int(parallel::max(double(stopSignal())));
+  if (signal == 0) return false;
+  stopped_by_ = signal;
+  failure_ = "step " + std::to_string(loop_.step) + ": stopped by " + stopSignalName(signal) +
+             " at t = " + shortNumber(loop_.time);
+  return true;
 }
 
 std::string Simulation::stopReason(const TimeStepChoice& choice) const {

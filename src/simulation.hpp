@@ -73,6 +73,9 @@ class Simulation {
   const Totals& totals() const { return totals_; }
   bool failed() const { return !failure_.empty(); }
   const std::string& failure() const { return failure_; }
+  // The signal that stopped the run at the end of a step (installStopSignals),
+  // 0 for none; such a run has failed() too, its reason the signal.
+  int stoppedBy() const { return stopped_by_; }
   double wallSeconds() const { return wall_seconds_; }
   // This rank's set-up: wall time per phase, and its peak memory at the end.
   const SetupSeconds& setupSeconds() const { return setup_seconds_; }
@@ -90,6 +93,7 @@ class Simulation {
   // dt = min(stable dt, growth * dt_prev, next output time, t_end) (docs/method.md §A6).
   TimeStepChoice chooseTimeStep() const;
   // Why the loop cannot take this step ("" if it can): step limit, dt collapse.
+  bool stopAsked();
   std::string stopReason(const TimeStepChoice& choice) const;
   // Throws ConfigError when a fresh run's first step is below numerics.dt_min.
   void refuseAFirstStepBelowTheFloor() const;
@@ -118,6 +122,7 @@ class Simulation {
   std::vector<double> pending_outputs_;  // snapshot times still ahead, sorted, each once
   Totals totals_;
   std::string failure_;
+  int stopped_by_ = 0;
   double wall_seconds_ = 0.0;
   std::vector<LoopObserver*> observers_;
 };

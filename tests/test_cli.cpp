@@ -132,6 +132,33 @@ TEST(CommandLine, ALongPathIsCutAndADirectoryIsNoCheckpoint) {
   std::filesystem::remove_all(dir);
 }
 
+// SIGTERM (a batch scheduler's notice) stops the run at the end of the step
+// under way: exit code 4, one line, the checkpoint and the outputs written,
+// summary.json "stopped"; the checkpoint restarts.
+TEST(CommandLine, ASignalStopsTheRunWithItsCheckpoint) {
+  const std::string dir = testing::scratchDir("cli_signal");
+  const std::string out = dir + "/out";
+  const std::string command = "(OMP_PROC_BIND=false OMP_NUM_THREADS=1 " +
+                              std::string(LAGREMAP_EXE) + " --problem sedov --quiet --output " +
+                              out + " >" + dir + "/stdout 2>" + dir +
+                              "/stderr & pid=$!; sleep 2; kill -TERM $pid; wait $pid; echo $? >" +
+                              dir + "/rc)";
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  EXPECT_EQ(testing::readFile(dir + "/rc"), "4\n");
+  const std::string error = testing::readFile(dir + "/stderr");
+  EXPECT_EQ(lineCount(error), 1) << error;
+  EXPECT_NE(error.find("stopped by SIGTERM"), std::string::npos) << error;
+  EXPECT_NE(testing::readFile(out + "/summary.json").find("\"status\": \"stopped\""),
+            std::string::npos);
+  ASSERT_TRUE(std::filesystem::exists(out + "/checkpoint.h5"));
+  const auto restarted = runLagremap("--problem sedov --quiet --output " + out +
+                                     " --set numerics.max_steps=1 --restart " + out +
+                                     "/checkpoint.h5");
+  EXPECT_NE(restarted.error.find("numerics.max_steps reached"), std::string::npos)
+      << restarted.output;
+  std::filesystem::remove_all(dir);
+}
+
 // OMP_NUM_THREADS beyond what Kokkos' OpenMP back-end holds is bad input
 // too, even beside a thread-count flag (the back-end sizes its pool by it:
 // both crashed with a segmentation fault); at 512 it runs.
