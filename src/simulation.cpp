@@ -112,7 +112,7 @@ Simulation::Simulation(const RunOptions& options, const Problem& problem)
   totals_ = loop_.initial;
   start_ = loop_;
   pending_outputs_ = snapshotTimesAhead(options.output_times, loop_.time, numerics_.dt_min);
-  if (!restarted_) refuseAFirstStepBelowTheFloor();
+  refuseAFirstStepBelowTheFloor();
   Kokkos::fence();
   setup_seconds_.initialize = phase.seconds();
   setup_peak_bytes_ = peakResidentBytes();
@@ -160,11 +160,18 @@ TimeStepChoice Simulation::chooseTimeStep() const {
 
 // A first step already below numerics.dt_min would stop the run at once with a
 // time step collapse, which is the input's doing: a t_end (1e300 s) longer
-// than dt_min_fraction resolves, or a dt_min_fraction too large for t_end.
+// than dt_min_fraction resolves, or a dt_min_fraction too large for t_end;
+// after a restart, a floor the checkpoint's state is already below.
 void Simulation::refuseAFirstStepBelowTheFloor() const {
   const TimeStepChoice first = chooseTimeStep();
   if (!(first.dt < numerics_.dt_min) || first.lands_on_end() || first.lands_on_output()) return;
   const double fraction = options_.config.real("numerics.dt_min_fraction");
+  if (restarted_) {
+    throw ConfigError("checkpoint '" + options_.restart_file + "': the first step after it, " +
+                      shortNumber(first.dt) + " s, is below numerics.dt_min_fraction x t_end = " +
+                      shortNumber(numerics_.dt_min) + " s (dt_min_fraction " +
+                      shortNumber(fraction) + ")");
+  }
   throw ConfigError(
       "t_end = " + shortNumber(t_end_) + " s: the first step, " + shortNumber(first.dt) +
       " s, is below numerics.dt_min_fraction x t_end = " + shortNumber(numerics_.dt_min) +

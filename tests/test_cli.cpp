@@ -614,6 +614,12 @@ TEST(CommandLine, RestartFinishesAStoppedRunAndRefusesABadCheckpoint) {
     EXPECT_EQ(lineCount(result.error), 1) << result.error;
     EXPECT_NE(result.error.find(bad), std::string::npos) << result.error;
   }
+  // the time-step floor's check of a fresh run (it exited 3 after the restart)
+  const auto floor =
+      runLagremap(run + " --set numerics.dt_min_fraction=0.5 --restart " + checkpoint);
+  EXPECT_EQ(floor.exit_code, 2) << floor.output;
+  EXPECT_NE(floor.error.find("numerics.dt_min_fraction x t_end"), std::string::npos)
+      << floor.error;
   const auto other =
       runLagremap("--problem sedov --quiet --output " + dir + "/x --restart " + checkpoint);
   EXPECT_EQ(other.exit_code, 2);
