@@ -8,9 +8,9 @@
 #include <sstream>
 
 #include "kokkos_session.hpp"
-#include "stop_signals.hpp"
 #include "parallel.hpp"
 #include "run.hpp"
+#include "stop_signals.hpp"
 #include "timers.hpp"
 
 namespace lagremap {
@@ -216,8 +216,8 @@ RunOptions runOptions(const Problem& problem, CommandLine& line, Config config, 
 // Runs and reports (rank 0); every rank returns the same exit code.
 int runAndReport(const RunOptions& options) {
   const RunResult result = runProblem(options);
-  const int code = result.stopped_by ? kExitStopped
-                   : result.failed   ? kExitRunFailed
+  const int code = result.stopped_by     ? kExitStopped
+                   : result.failed       ? kExitRunFailed
                    : result.checksPass() ? 0
                                          : kExitChecksFailed;
   if (!parallel::isRoot()) return code;

@@ -45,8 +45,8 @@ constexpr long kMaxHostThreads = 512;
 // (--kokkos-threads, --kokkos-num-threads, --kokkos-numa, --kokkos-device-id,
 // --kokkos-num-devices: a count of at least 1, an index of at least 0, at
 // most kMaxHostThreads threads), or with OMP_NUM_THREADS (whatever the
-// flags: the back-end sizes its pool by it too); empty if nothing. The driver asks before Kokkos reads them:
-// Kokkos 3.4 aborts on a bad value with two dozen lines of dump.
+// flags: the back-end sizes its pool by it too); empty if nothing. The driver asks before Kokkos
+// reads them: Kokkos 3.4 aborts on a bad value with two dozen lines of dump.
 std::string kokkosArgumentsError(int argc, const char* const argv[]);
 
 // Whether the execution space runs on the host (OpenMP, Serial, Threads).

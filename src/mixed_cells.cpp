@@ -254,8 +254,8 @@ std::string mixedCellsLine(const MixedCellReport& report) {
                   " material %d: %ld of %ld stretched, %ld expanded, %ld p outliers, %ld in "
                   "balance, p %.3g .. %.3g GPa (pure %.3g .. %.3g);",
                   m.material, m.stretched, m.mixed_cells, m.expanded, m.pressure_outliers,
-                  m.in_balance,
-                  m.p_mixed_lo / 1e9, m.p_mixed_hi / 1e9, m.p_pure_lo / 1e9, m.p_pure_hi / 1e9);
+                  m.in_balance, m.p_mixed_lo / 1e9, m.p_mixed_hi / 1e9, m.p_pure_lo / 1e9,
+                  m.p_pure_hi / 1e9);
     line += text;
   }
   std::snprintf(text, sizeof text, " pure p of all materials %.3g .. %.3g GPa;",

@@ -29,8 +29,7 @@ void writeTextFile(const std::string& path, const std::string& text) {
   if (!(written && flushed && closed)) {
     const int error = !written ? write_errno : !flushed ? flush_errno : errno;
     std::remove(path.c_str());  // no cut file left to be taken for a whole one
-    throw std::runtime_error("cannot write " + path + ": " +
-                             std::strerror(error ? error : EIO));
+    throw std::runtime_error("cannot write " + path + ": " + std::strerror(error ? error : EIO));
   }
 }
 

@@ -8,8 +8,8 @@
 
 #include "diagnostics.hpp"
 #include "parallel.hpp"
-#include "stop_signals.hpp"
 #include "setup.hpp"
+#include "stop_signals.hpp"
 
 namespace lagremap {
 

@@ -28,7 +28,9 @@ void writeRunAndSpeed(JsonWriter& json, const Simulation& simulation, const RunR
       .value("steps", result.steps)
       .value("t_end", simulation.tEnd())
       .value("t_final", result.time)
-      .value("status", result.stopped_by ? "stopped" : result.failed ? "failed" : "completed");
+      .value("status", result.stopped_by ? "stopped"
+                       : result.failed   ? "failed"
+                                         : "completed");
   if (result.failed) json.value("failure", result.failure);
   json.value("wall_seconds", result.wall_seconds);
   const PhaseTimers& timers = simulation.timers();

@@ -4,8 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <utility>
@@ -138,11 +138,10 @@ TEST(CommandLine, ALongPathIsCutAndADirectoryIsNoCheckpoint) {
 TEST(CommandLine, ASignalStopsTheRunWithItsCheckpoint) {
   const std::string dir = testing::scratchDir("cli_signal");
   const std::string out = dir + "/out";
-  const std::string command = "(OMP_PROC_BIND=false OMP_NUM_THREADS=1 " +
-                              std::string(LAGREMAP_EXE) + " --problem sedov --quiet --output " +
-                              out + " >" + dir + "/stdout 2>" + dir +
-                              "/stderr & pid=$!; sleep 2; kill -TERM $pid; wait $pid; echo $? >" +
-                              dir + "/rc)";
+  const std::string command =
+      "(OMP_PROC_BIND=false OMP_NUM_THREADS=1 " + std::string(LAGREMAP_EXE) +
+      " --problem sedov --quiet --output " + out + " >" + dir + "/stdout 2>" + dir +
+      "/stderr & pid=$!; sleep 2; kill -TERM $pid; wait $pid; echo $? >" + dir + "/rc)";
   ASSERT_EQ(std::system(command.c_str()), 0);
   EXPECT_EQ(testing::readFile(dir + "/rc"), "4\n");
   const std::string error = testing::readFile(dir + "/stderr");
@@ -151,9 +150,9 @@ TEST(CommandLine, ASignalStopsTheRunWithItsCheckpoint) {
   EXPECT_NE(testing::readFile(out + "/summary.json").find("\"status\": \"stopped\""),
             std::string::npos);
   ASSERT_TRUE(std::filesystem::exists(out + "/checkpoint.h5"));
-  const auto restarted = runLagremap("--problem sedov --quiet --output " + out +
-                                     " --set numerics.max_steps=1 --restart " + out +
-                                     "/checkpoint.h5");
+  const auto restarted =
+      runLagremap("--problem sedov --quiet --output " + out +
+                  " --set numerics.max_steps=1 --restart " + out + "/checkpoint.h5");
   EXPECT_NE(restarted.error.find("numerics.max_steps reached"), std::string::npos)
       << restarted.output;
   std::filesystem::remove_all(dir);
@@ -172,12 +171,12 @@ TEST(CommandLine, TooManyOpenMPThreadsIsBadInput) {
   EXPECT_EQ(lineCount(result.error), 1) << result.error;
   EXPECT_NE(result.error.find("OMP_NUM_THREADS=100000: at most 512 threads"), std::string::npos)
       << result.error;
-  result = runLagremap("--problem sod --scale 0.25 --quiet --kokkos-threads=1 --output " + dir +
-                       "/out");
+  result =
+      runLagremap("--problem sod --scale 0.25 --quiet --kokkos-threads=1 --output " + dir + "/out");
   EXPECT_EQ(result.exit_code, 2) << result.output;
   setenv("OMP_NUM_THREADS", "512", 1);
-  result = runLagremap("--problem sod --scale 0.25 --quiet --kokkos-threads=2 --output " + dir +
-                       "/out");
+  result =
+      runLagremap("--problem sod --scale 0.25 --quiet --kokkos-threads=2 --output " + dir + "/out");
   EXPECT_EQ(result.exit_code, 0) << result.output;
   if (saved) {
     setenv("OMP_NUM_THREADS", kept.c_str(), 1);
@@ -618,8 +617,7 @@ TEST(CommandLine, RestartFinishesAStoppedRunAndRefusesABadCheckpoint) {
   const auto floor =
       runLagremap(run + " --set numerics.dt_min_fraction=0.5 --restart " + checkpoint);
   EXPECT_EQ(floor.exit_code, 2) << floor.output;
-  EXPECT_NE(floor.error.find("numerics.dt_min_fraction x t_end"), std::string::npos)
-      << floor.error;
+  EXPECT_NE(floor.error.find("numerics.dt_min_fraction x t_end"), std::string::npos) << floor.error;
   const auto other =
       runLagremap("--problem sedov --quiet --output " + dir + "/x --restart " + checkpoint);
   EXPECT_EQ(other.exit_code, 2);

@@ -425,9 +425,9 @@ TEST(MixedCells, TaylorsOldTensionIsStretchedAndFailsTheCheck) {
 // A bent plate's outer fibre (docs/method.md §4.9): a film of solid (3% of
 // its cell) in tension along its interface, at a pressure below every pure
 // cell's (-3 GPa against -0.1 .. 0.1) and 5% below their density, yet its
-// normal stress across the interface is the gas's: the closure balanced it. Reported in balance, not
-// failed; the same cell pulling 3 GPa harder than the gas across its
-// interface is stretched and an outlier, and fails.
+// normal stress across the interface is the gas's: the closure balanced it. Reported in balance,
+// not failed; the same cell pulling 3 GPa harder than the gas across its interface is stretched and
+// an outlier, and fails.
 TEST(MixedCells, ABentPlatesOuterFibreInBalanceIsReportedNotFailed) {
   std::vector<MadeUpCell> cells = aluminiumAndGas();
   cells.push_back({{0.03, 0.97}, {0.95 * kRhoAl, 1.0}, {-3e9, 1e5}, {-1e5, -1e5}});
