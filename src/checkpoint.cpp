@@ -4,9 +4,13 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <map>
+#include <set>
+#include <sstream>
 #include <stdexcept>
 
 #include "fields.hpp"
+#include "input/config.hpp"
 #include "io/checksum.hpp"
 #include "io/hdf5_rows.hpp"
 #include "parallel.hpp"
@@ -17,8 +21,9 @@ namespace {
 using io::check;
 using io::Handle;
 
-// Format 2 added the checksums (2026-12-03); format 1's files are still
-// read, unverified.
+// Format 2 carries checksums; format 1's files (written without them) are
+// still read. A checksum present is verified whatever the format attribute
+// says: editing that attribute does not turn verification off.
 constexpr const char* kFormat = "lagremap checkpoint 2";
 constexpr const char* kFormatWithoutChecksums = "lagremap checkpoint 1";
 // Attribute of each dataset (io::RowsChecksum of its rows) and of the root
@@ -76,12 +81,18 @@ void writeChecksum(hid_t loc, const std::string& name, std::uint64_t checksum,
   io::writeWordAttribute(dataset.get(), kChecksum, checksum, file);
 }
 
-// Throws unless dataset `name` (`shown` in the message) holds `checksum`.
+// Which checksums a checkpoint's reader verifies: every one (format 2, where
+// a missing checksum is a corruption), or those present (format 1).
+enum class Checksums { kRequired, kWherePresent };
+
+// Throws unless dataset `name` (`shown` in the message) holds `checksum`
+// (or, kWherePresent, holds none).
 void verifyChecksum(hid_t loc, const std::string& name, const std::string& shown,
-                    std::uint64_t checksum, const std::string& file) {
+                    std::uint64_t checksum, Checksums checksums, const std::string& file) {
   Handle dataset(check(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), "open dataset", file), H5Dclose);
-  if (H5Aexists(dataset.get(), kChecksum) <= 0 ||
-      io::readWordAttribute(dataset.get(), kChecksum, file) != checksum) {
+  const bool present = H5Aexists(dataset.get(), kChecksum) > 0;
+  if (!present && checksums == Checksums::kWherePresent) return;
+  if (!present || io::readWordAttribute(dataset.get(), kChecksum, file) != checksum) {
     throw std::runtime_error("checkpoint '" + file + "' is corrupted: dataset " + shown +
                              " does not match its checksum");
   }
@@ -127,7 +138,7 @@ constexpr ValueRule kValueRules[] = {
 // is kept (brokenRule) until every rank has taken part in every read.
 class FieldReader {
  public:
-  FieldReader(const std::string& path, hid_t dxpl, bool checksums)
+  FieldReader(const std::string& path, hid_t dxpl, Checksums checksums)
       : path_(path), dxpl_(dxpl), checksums_(checksums) {}
 
   void read(hid_t group, const char* group_name, const char* entity, const FieldRef& field,
@@ -137,11 +148,9 @@ class FieldReader {
     io::readRows(group, field.name, H5T_NATIVE_DOUBLE, rows.selection(n_global),
                  field.components == 1 ? 0 : field.components, host.data(), dxpl_, path_);
     const std::string shown = std::string(group_name) + "/" + field.name;
-    if (checksums_) {
-      std::uint64_t checksum = rows.checksum(host.data(), field.components);
-      parallel::sum(&checksum, 1);
-      verifyChecksum(group, field.name, shown, checksum, path_);
-    }
+    std::uint64_t checksum = rows.checksum(host.data(), field.components);
+    parallel::sum(&checksum, 1);
+    verifyChecksum(group, field.name, shown, checksum, checksums_, path_);
     if (broken_.empty()) findBrokenRule(shown, entity, field, rows, host.data());
     RealView buffer("lagremap::checkpoint::buffer", n);
     Kokkos::deep_copy(buffer, host);
@@ -162,7 +171,7 @@ class FieldReader {
     const io::RowSelection selection{std::int64_t(dims[0]), std::int64_t(dims[0]), nullptr};
     io::readRows(file, name, H5T_NATIVE_DOUBLE, selection, cols == 1 ? 0 : cols, values.data(),
                  dxpl_, path_);
-    if (checksums_) verifyChecksum(file, name, name, tableChecksum(values, cols), path_);
+    verifyChecksum(file, name, name, tableChecksum(values, cols), checksums_, path_);
     return values;
   }
 
@@ -201,7 +210,7 @@ class FieldReader {
 
   std::string path_;
   hid_t dxpl_;
-  bool checksums_;
+  Checksums checksums_;
   std::string broken_;
 };
 
@@ -267,6 +276,37 @@ Handle group(hid_t file, const char* name, bool create, const std::string& path)
       H5Gclose);
 }
 
+// The "key=value" lines of `text`, by key.
+std::map<std::string, std::string> keyValues(const std::string& text) {
+  std::map<std::string, std::string> values;
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    const auto equals = line.find('=');
+    if (equals != std::string::npos) values[line.substr(0, equals)] = line.substr(equals + 1);
+  }
+  return values;
+}
+
+// "was written with key=a; this run has key=b" for the first key (in order)
+// whose value differs between the checkpoint's keys and the run's, "" if none.
+std::string firstChangedKey(const std::string& written, const std::string& run) {
+  const auto before = keyValues(written);
+  const auto now = keyValues(run);
+  std::set<std::string> keys;
+  for (const auto& entry : before) keys.insert(entry.first);
+  for (const auto& entry : now) keys.insert(entry.first);
+  const auto shown = [](const std::map<std::string, std::string>& values, const std::string& key) {
+    const auto it = values.find(key);
+    return it == values.end() ? "no " + key : key + "=" + abbreviated(it->second);
+  };
+  for (const std::string& key : keys) {
+    if (before.count(key) && now.count(key) && before.at(key) == now.at(key)) continue;
+    return "was written with " + shown(before, key) + "; this run has " + shown(now, key) +
+           " (a restart may change only t_end, numerics.* and check.*)";
+  }
+  return "";
+}
+
 // Writes the whole checkpoint file (collective); throws on an I/O failure,
 // every handle closed and the file removed.
 void writeFile(const std::string& path, const Mesh& mesh, const State& state,
@@ -282,6 +322,7 @@ void writeFile(const std::string& path, const Mesh& mesh, const State& state,
   io::writeTextAttribute(file.get(), "format", kFormat, path);
   io::writeTextAttribute(file.get(), "problem", loop.problem, path);
   io::writeTextAttribute(file.get(), "mode", loop.mode, path);
+  io::writeTextAttribute(file.get(), "keys", loop.keys, path);
   io::writeScalarAttribute(file.get(), "cells", double(mesh.n_global_cells), path);
   io::writeScalarAttribute(file.get(), "nodes", double(mesh.n_global_nodes), path);
   io::writeScalarAttribute(file.get(), "materials", double(state.n_materials), path);
@@ -337,7 +378,8 @@ void writeCheckpoint(const std::string& path, const Mesh& mesh, const State& sta
 }
 
 LoopState readCheckpoint(const std::string& path, Mesh& mesh, State& state,
-                         const std::string& problem, const std::string& mode) {
+                         const std::string& problem, const std::string& mode,
+                         const std::string& keys) {
   if (std::filesystem::is_directory(path)) {
     throw std::runtime_error("checkpoint '" + path + "' is a directory, not a checkpoint file");
   }
@@ -358,9 +400,11 @@ LoopState readCheckpoint(const std::string& path, Mesh& mesh, State& state,
   if (format != kFormat && format != kFormatWithoutChecksums) {
     throw std::runtime_error("'" + path + "' is not a lagremap checkpoint");
   }
-  const bool checksums = format == kFormat;
-  if (checksums && io::readWordAttribute(file.get(), kChecksum, path) !=
-                       io::attributesHash(file.get(), kChecksum, path)) {
+  const Checksums checksums = format == kFormat ? Checksums::kRequired : Checksums::kWherePresent;
+  const bool root_checksum =
+      checksums == Checksums::kRequired || H5Aexists(file.get(), kChecksum) > 0;
+  if (root_checksum && io::readWordAttribute(file.get(), kChecksum, path) !=
+                           io::attributesHash(file.get(), kChecksum, path)) {
     throw std::runtime_error("checkpoint '" + path +
                              "' is corrupted: its attributes (the loop's numbers) do not match "
                              "their checksum");
@@ -371,6 +415,13 @@ LoopState readCheckpoint(const std::string& path, Mesh& mesh, State& state,
   if (loop.problem != problem || loop.mode != mode) {
     throw std::runtime_error("checkpoint '" + path + "' is of " + loop.problem + " (" + loop.mode +
                              "), not " + problem + " (" + mode + ")");
+  }
+  if (H5Aexists(file.get(), "keys") > 0) {
+    loop.keys = io::readTextAttribute(file.get(), "keys", path);
+    const std::string changed = firstChangedKey(loop.keys, keys);
+    if (!keys.empty() && !changed.empty()) {
+      throw std::runtime_error("checkpoint '" + path + "' " + changed);
+    }
   }
   const double cells_in_file = io::readScalarAttribute(file.get(), "cells", path);
   const double nodes_in_file = io::readScalarAttribute(file.get(), "nodes", path);
@@ -388,8 +439,8 @@ LoopState readCheckpoint(const std::string& path, Mesh& mesh, State& state,
   visitNumbers(loop, step, [&](const char* name, double& value) {
     value = io::readScalarAttribute(file.get(), name, path);
   });
-  // (checkpoints before 2026-12-02 have none: the restart's own stable dt
-  // starts the record)
+  // (older checkpoints have none: the restart's own stable dt starts the
+  // record)
   loop.dt_stable_max = H5Aexists(file.get(), "dt_stable_max") > 0
                            ? io::readScalarAttribute(file.get(), "dt_stable_max", path)
                            : 0.0;

@@ -18,6 +18,9 @@ namespace lagremap {
 // Everything of the time loop besides the fields.
 struct LoopState {
   std::string problem, mode;
+  // The run's keys a restart must keep, "key=value" lines (restartKeys); a
+  // checkpoint of an older format has none.
+  std::string keys;
   double time = 0.0, dt_prev = 0.0;
   double dt_stable_max = 0.0;  // largest stable dt so far (Numerics::dt_drop_fraction)
   long step = 0;
@@ -37,8 +40,10 @@ void writeCheckpoint(const std::string& path, const Mesh& mesh, const State& sta
 // Reads this rank's cells and nodes (owned and ghosts) of the checkpoint into
 // the state and the mesh's node positions and returns the loop state.
 // Collective. Throws std::runtime_error naming the file for a missing,
-// truncated or corrupted file, or one of another problem, mode or mesh.
+// truncated or corrupted file, or one of another problem, mode or mesh, or
+// written with other `keys` ("key=value" lines; "" compares none).
 LoopState readCheckpoint(const std::string& path, Mesh& mesh, State& state,
-                         const std::string& problem, const std::string& mode);
+                         const std::string& problem, const std::string& mode,
+                         const std::string& keys = "");
 
 }  // namespace lagremap

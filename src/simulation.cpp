@@ -22,6 +22,18 @@ bool TimeStepChoice::lands_on_end() const {
 
 namespace {
 
+// The keys a restart keeps, "key=value" lines: all but those of the loop's
+// end and numerics (t_end, numerics.*: a restart may run on further, or past
+// a difficulty with a smaller CFL) and of the final checks (check.*).
+std::string restartKeys(const Config& config) {
+  std::string keys;
+  for (const auto& [key, param] : config.params()) {
+    if (key == "t_end" || key.rfind("numerics.", 0) == 0 || key.rfind("check.", 0) == 0) continue;
+    keys += key + "=" + param.value + "\n";
+  }
+  return keys;
+}
+
 const char* limitReason(const StepLimit& limit) {
   return limit.loc % kLimitCodes == kLimitVolume ? "volume" : "cfl";
 }
@@ -90,11 +102,15 @@ Simulation::Simulation(const RunOptions& options, const Problem& problem)
   // checkpoint; the derived fields follow from the same geometry kernel.
   loop_.problem = options.problem;
   loop_.mode = options.mode;
+  loop_.keys = restartKeys(options.config);
   restarted_ = !options.restart_file.empty();
   if (restarted_) {
+    const std::string keys = loop_.keys;
     collectively([&] {
-      loop_ = readCheckpoint(options.restart_file, mesh, state_, options.problem, options.mode);
+      loop_ =
+          readCheckpoint(options.restart_file, mesh, state_, options.problem, options.mode, keys);
     });
+    loop_.keys = keys;
     if (!(loop_.time < t_end_)) {
       throw ConfigError("checkpoint '" + options.restart_file +
                         "' is at t = " + std::to_string(loop_.time) + ", not before t_end");

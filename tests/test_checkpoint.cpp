@@ -13,6 +13,7 @@
 #include <iterator>
 #include <regex>
 #include <set>
+#include <vector>
 
 #include "src/checkpoint.hpp"
 #include "src/setup.hpp"
@@ -79,14 +80,12 @@ TEST(Checkpoint, AFlippedBitIsBadInputNamingTheFileAndDataset) {
   std::filesystem::remove_all(dir);
 }
 
-// Checkpoints of format 1 (before the checksums) still restart, unverified.
-TEST(Checkpoint, AFileOfTheFormatBeforeChecksumsStillRestarts) {
-  const std::string dir = testing::scratchDir("checkpoint_format");
-  const std::string run = stoppedSod(dir);
-  const std::string old = dir + "/format_1.h5";
-  std::filesystem::copy_file(dir + "/run/checkpoint.h5", old);
-  // (what changes besides: the checksums are left, and no longer match)
-  const hid_t file = H5Fopen(old.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+// Sets the root `format` attribute of checkpoint `path` to "lagremap
+// checkpoint 1" (the format written before the checksums) and deletes the
+// checksum attributes named in `checksums` ("" for the root's, else a
+// dataset's path).
+void editToFormat1(const std::string& path, const std::vector<std::string>& checksums) {
+  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
   H5Adelete(file, "format");
   const std::string format = "lagremap checkpoint 1";
   const hid_t type = H5Tcopy(H5T_C_S1);
@@ -97,9 +96,103 @@ TEST(Checkpoint, AFileOfTheFormatBeforeChecksumsStillRestarts) {
   H5Aclose(attribute);
   H5Sclose(space);
   H5Tclose(type);
+  for (const std::string& name : checksums) {
+    if (name.empty()) {
+      H5Adelete(file, "checksum");
+    } else {
+      H5Adelete_by_name(file, name.c_str(), "checksum", H5P_DEFAULT);
+    }
+  }
   H5Fclose(file);
+}
+
+// The datasets of a sod checkpoint, each carrying its checksum.
+std::vector<std::string> checkpointDatasets(const std::string& path) {
+  std::vector<std::string> names;
+  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  // (the link's info type differs between HDF5 versions: taken as auto)
+  H5Lvisit(
+      file, H5_INDEX_NAME, H5_ITER_NATIVE,
+      [](hid_t group, const char* name, const auto*, void* out) -> herr_t {
+        const hid_t object = H5Oopen(group, name, H5P_DEFAULT);
+        if (H5Iget_type(object) == H5I_DATASET) {
+          static_cast<std::vector<std::string>*>(out)->push_back(name);
+        }
+        H5Oclose(object);
+        return 0;
+      },
+      &names);
+  H5Fclose(file);
+  return names;
+}
+
+// Checkpoints of format 1 (written without checksums) still restart.
+TEST(Checkpoint, AFileOfTheFormatBeforeChecksumsStillRestarts) {
+  const std::string dir = testing::scratchDir("checkpoint_format");
+  const std::string run = stoppedSod(dir);
+  const std::string old = dir + "/format_1.h5";
+  std::filesystem::copy_file(dir + "/run/checkpoint.h5", old);
+  std::vector<std::string> checksums = checkpointDatasets(old);
+  ASSERT_GE(checksums.size(), 3u);
+  checksums.push_back("");
+  editToFormat1(old, checksums);
   const auto result = runLagremap(run + " --restart " + old);
   EXPECT_EQ(result.exit_code, 0) << result.output;
+  std::filesystem::remove_all(dir);
+}
+
+// A checkpoint carrying checksums is verified whatever its format attribute
+// says. Before, "lagremap checkpoint 1" in that attribute turned the
+// verification off and a flipped bit restarted into other results.
+TEST(Checkpoint, ChecksumsAreVerifiedWhateverTheFormatAttributeSays) {
+  const std::string dir = testing::scratchDir("checkpoint_format_edit");
+  const std::string run = stoppedSod(dir);
+  // The format attribute edited: the root's checksum no longer matches.
+  const std::string edited = dir + "/edited.h5";
+  std::filesystem::copy_file(dir + "/run/checkpoint.h5", edited);
+  editToFormat1(edited, {});
+  expectBadInput(runLagremap(run + " --restart " + edited), edited, "loop's numbers");
+  // The root's checksum deleted too, and a bit of a cell's energy flipped:
+  // the dataset's own checksum finds it.
+  const std::string flipped = dir + "/flipped.h5";
+  std::filesystem::copy_file(dir + "/run/checkpoint.h5", flipped);
+  editToFormat1(flipped, {""});
+  const std::uint64_t offset = testing::valueOffset(flipped, "cells/E_c", 17);
+  ASSERT_GT(offset, 0u);
+  testing::flipBit(flipped, offset + 3, 2);
+  expectBadInput(runLagremap(run + " --restart " + flipped), flipped, "cells/E_c");
+  std::filesystem::remove_all(dir);
+}
+
+// A restart continues the run of its checkpoint: a key of the physics, the
+// mesh or the set-up changed is bad input naming it (before, a Johnson-Cook
+// rod's checkpoint restarted under perfect plasticity, silently); t_end,
+// numerics.* and check.* may change.
+TEST(Checkpoint, ARestartKeepsTheRunsKeys) {
+  const std::string dir = testing::scratchDir("checkpoint_keys");
+  const std::string rod =
+      "--problem rod --scale 0.25 --quiet --set metal.hardening=johnson_cook"
+      " --set metal.jc_B=3e8 --set metal.jc_n=0.3 --output " +
+      dir + "/rod";
+  const auto stopped = runLagremap(rod + " --set numerics.max_steps=5");
+  ASSERT_EQ(stopped.exit_code, 3) << stopped.output;
+  const std::string checkpoint = dir + "/rod/checkpoint.h5";
+  const std::string perfect =
+      "--problem rod --scale 0.25 --quiet --set metal.hardening=perfect"
+      " --set metal.jc_B=3e8 --set metal.jc_n=0.3 --output " +
+      dir + "/perfect";
+  const auto changed = runLagremap(perfect + " --restart " + checkpoint);
+  expectBadInput(changed, checkpoint, "metal.hardening=johnson_cook");
+  EXPECT_NE(changed.error.find("this run has metal.hardening=perfect"), std::string::npos)
+      << changed.error;
+  const auto scaled = runLagremap("--problem rod --scale 0.5 --quiet --output " + dir +
+                                  "/scaled --restart " + checkpoint);
+  expectBadInput(scaled, checkpoint, "mesh.nx=");
+  // The loop's end, its numerics and the checks may change.
+  const auto further = runLagremap(rod + " --restart " + checkpoint +
+                                   " --set t_end=2e-7 --set numerics.cfl=0.3"
+                                   " --set check.length_tolerance=1");
+  EXPECT_EQ(further.exit_code, 0) << further.output;
   std::filesystem::remove_all(dir);
 }
 

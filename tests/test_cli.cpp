@@ -34,6 +34,12 @@ TEST(CommandLine, MalformedInputGivesExitCodeTwoAndOneLine) {
   std::ofstream(nul_deck) << "problem = \"sod\"\n# a" << '\0' << "comment\n";
   const std::string latin1_deck = dir + "/latin1.toml";
   std::ofstream(latin1_deck) << "problem = \"sod\"\n# caf\xe9\n";
+  // A number written as a string, and in hex: the deck reader took both as
+  // numbers.
+  const std::string string_deck = dir + "/string_number.toml";
+  std::ofstream(string_deck) << "problem = \"sod\"\n[left]\nrho = \"2.0\"\n";
+  const std::string hex_deck = dir + "/hex_number.toml";
+  std::ofstream(hex_deck) << "problem = \"sod\"\n[mesh]\nnx = 0x40\n";
   const std::string out = " --output " + dir + "/out";
   const std::vector<BadInput> table = {
       {"", "--problem is required"},
@@ -88,6 +94,12 @@ TEST(CommandLine, MalformedInputGivesExitCodeTwoAndOneLine) {
       {"--problem sod --kokkos-device-id=-5", "--kokkos-device-id=-5: must be at least 0"},
       {"--problem sod --kokkos-num-devices=-1", "--kokkos-num-devices=-1: must be at least 1"},
       {"--problem sod --scale 0.25 --kokkos-threads=5000", "at most 512 threads"},
+      // (it said "t_end can be at most 0 s": the geometry's products overflowed)
+      {"--problem rod --set rod.length=1e300", "rod.length = 1e+300 m is out of range"},
+      // Decimal numbers only (strtod took hex, leading blanks, "infinity")
+      {"--problem sod --set left.rho=0x1p1", "bad value '0x1p1' for key 'left.rho'"},
+      {"--problem sod --set 'left.rho= 2'", "bad value ' 2' for key 'left.rho'"},
+      {"--problem sod --set mesh.nx=' 40'", "bad value ' 40' for key 'mesh.nx'"},
   };
   for (const BadInput& bad : table) {
     const std::string args = bad.args;
@@ -102,7 +114,8 @@ TEST(CommandLine, MalformedInputGivesExitCodeTwoAndOneLine) {
     EXPECT_NE(result.error.find(bad.expected), std::string::npos)
         << bad.args << ": '" << result.error << "' does not mention '" << bad.expected << "'";
   }
-  for (const std::string& file : {deck, wrong_key_deck, nul_deck, latin1_deck}) {
+  for (const std::string& file :
+       {deck, wrong_key_deck, nul_deck, latin1_deck, string_deck, hex_deck}) {
     const auto result = runLagremap("--input " + file + out);
     EXPECT_EQ(result.exit_code, 2) << result.output;
     EXPECT_EQ(lineCount(result.error), 1) << result.error;
@@ -112,6 +125,12 @@ TEST(CommandLine, MalformedInputGivesExitCodeTwoAndOneLine) {
     const auto result = runLagremap("--input " + file + out);
     EXPECT_NE(result.error.find("line 2:"), std::string::npos) << result.error;
   }
+  EXPECT_NE(runLagremap("--input " + string_deck + out)
+                .error.find("key 'left.rho' is a number; the deck gives the string \"2.0\""),
+            std::string::npos);
+  EXPECT_NE(runLagremap("--input " + hex_deck + out)
+                .error.find("key 'mesh.nx': write the number in decimal"),
+            std::string::npos);
   std::filesystem::remove_all(dir);
 }
 

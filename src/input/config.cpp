@@ -26,8 +26,14 @@ std::string formatReal(double value) {
   return out.str();
 }
 
+// Decimal text only: strtod alone would also take leading blanks, hex
+// ("0x1p-3") and "infinity" or "nan" words.
+bool isDecimal(const std::string& text) {
+  return !text.empty() && text.find_first_not_of("0123456789+-.eE") == std::string::npos;
+}
+
 bool parseReal(const std::string& text, double* value) {
-  if (text.empty()) return false;
+  if (!isDecimal(text)) return false;
   errno = 0;
   char* end = nullptr;
   *value = std::strtod(text.c_str(), &end);
@@ -35,7 +41,7 @@ bool parseReal(const std::string& text, double* value) {
 }
 
 bool parseInteger(const std::string& text, long* value) {
-  if (text.empty()) return false;
+  if (!isDecimal(text)) return false;
   errno = 0;
   char* end = nullptr;
   *value = std::strtol(text.c_str(), &end, 10);
@@ -66,6 +72,10 @@ std::string typeName(const Param& param) {
   }
   return "";
 }
+
+// Lengths (unit m) beyond this magnitude overflow the geometry's products of
+// lengths (volumes, their squares) in doubles.
+constexpr double kLargestLength = 1e50;
 
 // The tables of the deck at `path`, or ConfigError naming it. Only a regular
 // file is read: a device would read as an empty deck (/dev/urandom) or never
@@ -149,6 +159,10 @@ void Config::set(const std::string& key, const std::string& value) {
       double parsed;
       ok = parseReal(value, &parsed);
       if (ok) normalized = formatReal(parsed);
+      if (ok && param.unit == "m" && std::abs(parsed) > kLargestLength) {
+        throw ConfigError(key + " = " + normalized + " m is out of range: lengths are at most " +
+                          formatReal(kLargestLength) + " m (beyond, products of lengths overflow)");
+      }
       break;
     }
     case ParamType::Integer: {
@@ -202,10 +216,24 @@ void Config::loadDeck(const std::string& path, std::string* problem, std::string
             walk(*sub, key);
             continue;
           }
+          const auto param = params_.find(key);
+          const bool number_key =
+              param != params_.end() &&
+              (param->second.type == ParamType::Real || param->second.type == ParamType::Integer);
           std::string text;
           if (const auto* s = node.as_string()) {
+            // (a quoted number is a string in TOML: a typo or a pasted value)
+            if (number_key) {
+              throw ConfigError("input deck '" + path + "': key '" + key +
+                                "' is a number; the deck gives the string \"" +
+                                abbreviated(s->get()) + "\"");
+            }
             text = s->get();
           } else if (const auto* i = node.as_integer()) {
+            if (i->flags() != toml::value_flags::none) {
+              throw ConfigError("input deck '" + path + "': key '" + key +
+                                "': write the number in decimal, not hex, octal or binary");
+            }
             text = std::to_string(i->get());
           } else if (const auto* d = node.as_floating_point()) {
             text = formatReal(d->get());

@@ -93,11 +93,13 @@ OutputFile::OutputFile(const std::string& path, hid_t fapl) : path_(path), room_
     }
   }
   error = parallel::firstMessage(error);
-  if (!error.empty()) throw std::runtime_error(error);
+  if (!error.empty()) throw parallel::AgreedError(error);
+  // (the create is collective: every rank fails alike, and says so once)
   id_ = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
-  if (id_ < 0) {
+  error = parallel::firstMessage(id_ < 0 ? failureMessage("create", path) : "");
+  if (!error.empty()) {
     releaseRoom();
-    failHdf5("create", path);
+    throw parallel::AgreedError(error);
   }
 }
 
