@@ -380,11 +380,16 @@ void writeCheckpoint(const std::string& path, const Mesh& mesh, const State& sta
 LoopState readCheckpoint(const std::string& path, Mesh& mesh, State& state,
                          const std::string& problem, const std::string& mode,
                          const std::string& keys) {
-  if (std::filesystem::is_directory(path)) {
+  std::error_code error;
+  const auto status = std::filesystem::status(path, error);
+  if (std::filesystem::is_directory(status)) {
     throw std::runtime_error("checkpoint '" + path + "' is a directory, not a checkpoint file");
   }
-  if (!std::filesystem::is_regular_file(path)) {
-    throw std::runtime_error("checkpoint '" + path + "' does not exist");
+  if (!std::filesystem::is_regular_file(status)) {
+    // (a name too long, a directory above it that cannot be read: the reason)
+    const bool missing = !error || error == std::errc::no_such_file_or_directory;
+    throw std::runtime_error("checkpoint '" + path + "' " +
+                             (missing ? "does not exist" : "cannot be read: " + error.message()));
   }
   io::QuietHdf5Errors quiet;
   Handle fapl(io::fileAccess(path), H5Pclose);

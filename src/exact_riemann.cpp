@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -167,108 +168,109 @@ ValueAndSlope starPressureResidual(double q, const SideConstants& left, const Si
   throw std::runtime_error(message.str());
 }
 
-// Root q* of f by Newton's method (4.44) from the guess of Sec. 4.3.2, safeguarded by a bracket.
-// Plain Newton is not enough near vacuum: there f ~ q^z with z = (gamma-1)/(2 gamma) small, so
-// from above a step jumps past q = 0 and from below (f concave, so no overshoot) it only gains a
-// factor ~1/(1-z) per step; with gamma = 1.05 and p* ~ 1e-70 that exceeded 200 steps. So q* is
-// first bracketed (analytically when both waves are rarefactions, by climbing otherwise), and a
-// Newton step that leaves the bracket or fails to halve the previous step is replaced by a
-// geometric bisection, which copes with brackets spanning many decades.
-double solveStarPressure(const SideConstants& left, const SideConstants& right,
-                         double velocity_jump) {
-  auto residualAt = [&](double q) { return starPressureResidual(q, left, right, velocity_jump); };
-
-  const double q_guess = initialPressureGuess(left, right, velocity_jump);
-  const double q_min = std::min(left.q, right.q);
-  // A liquid under enough tension sits at q_K <= 0, below the vacuum of the softer gas; its wave
-  // is a shock whatever q* > 0, so q* > q_min as when f(q_min) < 0.
-  bool two_rarefactions = false;
-  if (q_min > 0.0) {
-    const ValueAndSlope at_q_min = residualAt(q_min);
-    if (at_q_min.value == 0.0) return q_min;
-    two_rarefactions = at_q_min.value > 0.0;
-  }
-
-  // f(q_below) < 0 < f(q_above) once both are set; q_below = 0 marks a lower end still unknown.
+// f(q_below) < 0 < f(q_above) once both are set; q_below = 0 marks a lower
+// end still unknown.
+struct PressureBracket {
   double q_below = 0.0;
   double q_above = 0.0;
-  if (two_rarefactions) {
-    // q* < q_min: two rarefactions. With c_K = 2 a_K / (gamma_K - 1), z_K = (gamma_K - 1) /
-    // (2 gamma_K), P_K = p_K + p_inf_K and g_K(q) = c_K ((q + q_offset_K) / P_K)^z_K, f(q*) = 0
-    // reads
-    //   g_L(q*) + g_R(q*) = c_L + c_R - (u_R - u_L) =: D.
-    // Each g_K rises from m_K = g_K(0) = c_K (q_offset_K / P_K)^z_K (0 for the softer gas), and
-    // D > m_L + m_R by the positivity condition. So g_K(q*) <= D - m_other, and the larger term is
-    // >= D/2; with the inverse h_K(y) = P_K (y / c_K)^(1/z_K) - q_offset_K of g_K,
-    //   min_K h_K(D/2) <= q* <= min_K h_K(D - m_other).
-    // For ideal gases (offsets 0) both ends are positive. A stiffer gas with m_K >= D/2 makes the
-    // lower end useless; then the descent below finds one.
-    const double available = 2.0 * left.sound_speed / (left.gamma - 1.0) +
-                             2.0 * right.sound_speed / (right.gamma - 1.0) - velocity_jump;
-    q_below = q_min;
-    q_above = q_min;
-    for (const SideConstants* side : {&left, &right}) {
-      const SideConstants* other = side == &left ? &right : &left;
-      const double z = (side->gamma - 1.0) / (2.0 * side->gamma);
-      const double c = 2.0 * side->sound_speed / (side->gamma - 1.0);
-      const double z_other = (other->gamma - 1.0) / (2.0 * other->gamma);
-      const double c_other = 2.0 * other->sound_speed / (other->gamma - 1.0);
-      const double m_other = c_other * std::pow(other->q_offset / other->shifted_p, z_other);
-      q_below = std::min(q_below,
-                         side->shifted_p * std::pow(0.5 * available / c, 1.0 / z) - side->q_offset);
-      q_above = std::min(
-          q_above, side->shifted_p * std::pow((available - m_other) / c, 1.0 / z) - side->q_offset);
-    }
-    // The bounds are exact only in exact arithmetic; rounding (P_K (...) - q_offset_K cancels when
-    // q* << q_offset_K) must not leave the root outside, so each end is checked.
-    if (!(q_above > 0.0) || residualAt(q_above).value < 0.0) q_above = q_min;
-    if (q_below > 0.0 && residualAt(q_below).value > 0.0) q_below = 0.0;
-  } else {
-    // q* > q_min: climb from the guess. Below the root a Newton step undershoots (f concave), so
-    // twice the Newton iterate at least doubles q and soon passes the root.
-    q_below = std::max(q_min, 0.0);
-    double q = std::max(q_guess, 2.0 * q_min);
-    for (int iteration = 0;; ++iteration) {
-      if (iteration == kMaxPressureIterations)
-        throwNotConverged("upper bracket search", q, left, right);
-      const ValueAndSlope at_q = residualAt(q);
-      if (!std::isfinite(at_q.value)) throwNotConverged("upper bracket search", q, left, right);
-      if (at_q.value >= 0.0) {
-        q_above = q;
-        break;
-      }
-      q_below = q;
-      q = 2.0 * (q - at_q.value / at_q.slope);
-    }
-  }
+};
 
-  if (!(q_below > 0.0)) {
-    // No positive lower end yet, though f(0+) < 0 by the positivity condition: descend from
-    // q_above by factors 2^-1, 2^-2, 2^-4, ..., which reach 1e-300 within ten steps.
-    double factor = 0.5;
-    double q = q_above;
-    for (int iteration = 0;; ++iteration) {
-      if (iteration == kMaxPressureIterations)
-        throwNotConverged("lower bracket search", q, left, right);
-      q *= factor;
-      factor *= factor;
-      if (!(q > 0.0)) throwNotConverged("lower bracket search", q, left, right);
-      const ValueAndSlope at_q = residualAt(q);
-      if (!std::isfinite(at_q.value)) throwNotConverged("lower bracket search", q, left, right);
-      if (at_q.value == 0.0) return q;
-      if (at_q.value < 0.0) {
-        q_below = q;
-        break;
-      }
-      q_above = q;
-    }
+// q* < q_min: two rarefactions. With c_K = 2 a_K / (gamma_K - 1), z_K = (gamma_K - 1) /
+// (2 gamma_K), P_K = p_K + p_inf_K and g_K(q) = c_K ((q + q_offset_K) / P_K)^z_K, f(q*) = 0
+// reads
+//   g_L(q*) + g_R(q*) = c_L + c_R - (u_R - u_L) =: D.
+// Each g_K rises from m_K = g_K(0) = c_K (q_offset_K / P_K)^z_K (0 for the softer gas), and
+// D > m_L + m_R by the positivity condition. So g_K(q*) <= D - m_other, and the larger term is
+// >= D/2; with the inverse h_K(y) = P_K (y / c_K)^(1/z_K) - q_offset_K of g_K,
+//   min_K h_K(D/2) <= q* <= min_K h_K(D - m_other).
+// For ideal gases (offsets 0) both ends are positive. A stiffer gas with m_K >= D/2 makes the
+// lower end useless; then descendToLowerEnd finds one.
+PressureBracket twoRarefactionBracket(const SideConstants& left, const SideConstants& right,
+                                      double velocity_jump, double q_min) {
+  const double available = 2.0 * left.sound_speed / (left.gamma - 1.0) +
+                           2.0 * right.sound_speed / (right.gamma - 1.0) - velocity_jump;
+  PressureBracket bracket{q_min, q_min};
+  for (const SideConstants* side : {&left, &right}) {
+    const SideConstants* other = side == &left ? &right : &left;
+    const double z = (side->gamma - 1.0) / (2.0 * side->gamma);
+    const double c = 2.0 * side->sound_speed / (side->gamma - 1.0);
+    const double z_other = (other->gamma - 1.0) / (2.0 * other->gamma);
+    const double c_other = 2.0 * other->sound_speed / (other->gamma - 1.0);
+    const double m_other = c_other * std::pow(other->q_offset / other->shifted_p, z_other);
+    bracket.q_below = std::min(
+        bracket.q_below, side->shifted_p * std::pow(0.5 * available / c, 1.0 / z) - side->q_offset);
+    bracket.q_above =
+        std::min(bracket.q_above,
+                 side->shifted_p * std::pow((available - m_other) / c, 1.0 / z) - side->q_offset);
   }
+  // The bounds are exact only in exact arithmetic; rounding (P_K (...) - q_offset_K cancels when
+  // q* << q_offset_K) must not leave the root outside, so each end is checked.
+  if (!(bracket.q_above > 0.0) ||
+      starPressureResidual(bracket.q_above, left, right, velocity_jump).value < 0.0) {
+    bracket.q_above = q_min;
+  }
+  if (bracket.q_below > 0.0 &&
+      starPressureResidual(bracket.q_below, left, right, velocity_jump).value > 0.0) {
+    bracket.q_below = 0.0;
+  }
+  return bracket;
+}
 
+// q* > q_min: climb from the guess. Below the root a Newton step undershoots (f concave), so
+// twice the Newton iterate at least doubles q and soon passes the root.
+PressureBracket climbToUpperEnd(const SideConstants& left, const SideConstants& right,
+                                double velocity_jump, double q_min, double q_guess) {
+  PressureBracket bracket{std::max(q_min, 0.0), 0.0};
+  double q = std::max(q_guess, 2.0 * q_min);
+  for (int iteration = 0;; ++iteration) {
+    if (iteration == kMaxPressureIterations)
+      throwNotConverged("upper bracket search", q, left, right);
+    const ValueAndSlope at_q = starPressureResidual(q, left, right, velocity_jump);
+    if (!std::isfinite(at_q.value)) throwNotConverged("upper bracket search", q, left, right);
+    if (at_q.value >= 0.0) {
+      bracket.q_above = q;
+      return bracket;
+    }
+    bracket.q_below = q;
+    q = 2.0 * (q - at_q.value / at_q.slope);
+  }
+}
+
+// No positive lower end yet, though f(0+) < 0 by the positivity condition: descend from
+// q_above by factors 2^-1, 2^-2, 2^-4, ..., which reach 1e-300 within ten steps. Returns the
+// root where a step lands on it exactly.
+std::optional<double> descendToLowerEnd(const SideConstants& left, const SideConstants& right,
+                                        double velocity_jump, PressureBracket& bracket) {
+  double factor = 0.5;
+  double q = bracket.q_above;
+  for (int iteration = 0;; ++iteration) {
+    if (iteration == kMaxPressureIterations)
+      throwNotConverged("lower bracket search", q, left, right);
+    q *= factor;
+    factor *= factor;
+    if (!(q > 0.0)) throwNotConverged("lower bracket search", q, left, right);
+    const ValueAndSlope at_q = starPressureResidual(q, left, right, velocity_jump);
+    if (!std::isfinite(at_q.value)) throwNotConverged("lower bracket search", q, left, right);
+    if (at_q.value == 0.0) return q;
+    if (at_q.value < 0.0) {
+      bracket.q_below = q;
+      return std::nullopt;
+    }
+    bracket.q_above = q;
+  }
+}
+
+// Newton's method (4.44) from q_guess inside the bracket; a step that leaves the bracket or
+// fails to halve the previous step is replaced by a geometric bisection.
+double safeguardedNewton(const SideConstants& left, const SideConstants& right,
+                         double velocity_jump, double q_guess, PressureBracket bracket) {
+  double& q_below = bracket.q_below;
+  double& q_above = bracket.q_above;
   double q = q_guess;
   if (!(q >= q_below && q <= q_above)) q = std::sqrt(q_below) * std::sqrt(q_above);
   double previous_step = q_above - q_below;
   for (int iteration = 0; iteration < kMaxPressureIterations; ++iteration) {
-    const ValueAndSlope at_q = residualAt(q);
+    const ValueAndSlope at_q = starPressureResidual(q, left, right, velocity_jump);
     if (!std::isfinite(at_q.value)) break;
     if (at_q.value == 0.0) return q;
     (at_q.value < 0.0 ? q_below : q_above) = q;
@@ -287,6 +289,35 @@ double solveStarPressure(const SideConstants& left, const SideConstants& right,
     q = q_next;
   }
   throwNotConverged("Newton iteration", q, left, right);
+}
+
+// Root q* of f by Newton's method (4.44) from the guess of Sec. 4.3.2, safeguarded by a bracket.
+// Plain Newton is not enough near vacuum: there f ~ q^z with z = (gamma-1)/(2 gamma) small, so
+// from above a step jumps past q = 0 and from below (f concave, so no overshoot) it only gains a
+// factor ~1/(1-z) per step; with gamma = 1.05 and p* ~ 1e-70 that exceeded 200 steps. So q* is
+// first bracketed (analytically when both waves are rarefactions, by climbing otherwise), and a
+// Newton step that leaves the bracket or fails to halve the previous step is replaced by a
+// geometric bisection, which copes with brackets spanning many decades.
+double solveStarPressure(const SideConstants& left, const SideConstants& right,
+                         double velocity_jump) {
+  const double q_guess = initialPressureGuess(left, right, velocity_jump);
+  const double q_min = std::min(left.q, right.q);
+  // A liquid under enough tension sits at q_K <= 0, below the vacuum of the softer gas; its wave
+  // is a shock whatever q* > 0, so q* > q_min as when f(q_min) < 0.
+  bool two_rarefactions = false;
+  if (q_min > 0.0) {
+    const ValueAndSlope at_q_min = starPressureResidual(q_min, left, right, velocity_jump);
+    if (at_q_min.value == 0.0) return q_min;
+    two_rarefactions = at_q_min.value > 0.0;
+  }
+  PressureBracket bracket = two_rarefactions
+                                ? twoRarefactionBracket(left, right, velocity_jump, q_min)
+                                : climbToUpperEnd(left, right, velocity_jump, q_min, q_guess);
+  if (!(bracket.q_below > 0.0)) {
+    const std::optional<double> root = descendToLowerEnd(left, right, velocity_jump, bracket);
+    if (root) return *root;
+  }
+  return safeguardedNewton(left, right, velocity_jump, q_guess, bracket);
 }
 
 // Density behind a shock with post-shock lifted pressure q_star, Toro (4.50) / (4.57).

@@ -69,40 +69,53 @@ StepLimit LagrangeStep::advance(double dt, long step) {
   return stage(dt, true);  // corrector: forces and velocities of t^{n+1/2} carry t^n to t^{n+1}
 }
 
+// One stage of the predictor-corrector (docs/method.md §1.1): its five
+// phases, each timed.
 StepLimit LagrangeStep::stage(double dt_stage, bool last_stage) {
-  const CornerControls corner_controls{numerics_.order, numerics_.gather};
-  {
-    auto scope = timers_.scope(Phase::Corners);
-    computeCornerTerms(mesh_, state_, corner_controls, corner_rows_);
-  }
-  {
-    auto scope = timers_.scope(Phase::NodalSolve);
-    nodalSolve(mesh_, state_, corner_controls, dt_stage);
-    std::swap(mesh_.x_n, state_.x_n_next);  // the mesh moves: no copy, the Views trade places
-  }
-  if (halo_) {
-    // ghost nodes: their owners' velocities (docs/method.md §7.4), and the positions
-    // these give, computed as their owners do (the external forces are read
-    // on owned nodes only: the boundary work)
-    auto scope = timers_.scope(Phase::Halo);
-    halo_->exchangeNodes(node_fields_);
-    moveGhostNodes(mesh_, state_, dt_stage);
-  }
-  StepLimit limit;
   const StageEnd what = last_stage && remap_follows_ ? StageEnd::ForRemap : StageEnd::Full;
-  {
-    auto scope = timers_.scope(Phase::CellUpdate);
-    limit =
-        updateCellsAndGeometry(mesh_, state_, dt_stage, numerics_.step, what, numerics_.kernels);
-  }
-  if (halo_) {
-    // what the next stage, or the remap, reads in the outer ghost layer (the
-    // first layer has completed the stage by itself: src/fields.hpp)
-    auto scope = timers_.scope(Phase::Halo);
-    halo_->exchangeOuterCells(what == StageEnd::ForRemap ? stage_end_fields_for_remap_
-                                                         : stage_end_fields_);
-  }
+  computeCorners();
+  solveNodesAndMove(dt_stage);
+  completeGhostNodes(dt_stage);
+  const StepLimit limit = updateCells(dt_stage, what);
+  completeOuterGhostCells(what);
+  // The next dt's bound: the smallest over every rank's cells of the CFL and
+  // volume-change candidates at the new positions (docs/method.md §2.7).
   return overAllRanks(limit);
+}
+
+void LagrangeStep::computeCorners() {
+  auto scope = timers_.scope(Phase::Corners);
+  computeCornerTerms(mesh_, state_, {numerics_.order, numerics_.gather}, corner_rows_);
+}
+
+void LagrangeStep::solveNodesAndMove(double dt_stage) {
+  auto scope = timers_.scope(Phase::NodalSolve);
+  nodalSolve(mesh_, state_, {numerics_.order, numerics_.gather}, dt_stage);
+  std::swap(mesh_.x_n, state_.x_n_next);  // the mesh moves: no copy, the Views trade places
+}
+
+void LagrangeStep::completeGhostNodes(double dt_stage) {
+  if (!halo_) return;
+  // ghost nodes: their owners' velocities (docs/method.md §7.4), and the positions
+  // these give, computed as their owners do (the external forces are read
+  // on owned nodes only: the boundary work)
+  auto scope = timers_.scope(Phase::Halo);
+  halo_->exchangeNodes(node_fields_);
+  moveGhostNodes(mesh_, state_, dt_stage);
+}
+
+StepLimit LagrangeStep::updateCells(double dt_stage, StageEnd what) {
+  auto scope = timers_.scope(Phase::CellUpdate);
+  return updateCellsAndGeometry(mesh_, state_, dt_stage, numerics_.step, what, numerics_.kernels);
+}
+
+void LagrangeStep::completeOuterGhostCells(StageEnd what) {
+  if (!halo_) return;
+  // what the next stage, or the remap, reads in the outer ghost layer (the
+  // first layer has completed the stage by itself: src/fields.hpp)
+  auto scope = timers_.scope(Phase::Halo);
+  halo_->exchangeOuterCells(what == StageEnd::ForRemap ? stage_end_fields_for_remap_
+                                                       : stage_end_fields_);
 }
 
 void LagrangeStep::remapFollowsEveryStep() {

@@ -71,8 +71,20 @@ class LagrangeStep {
  private:
   // Corner terms, nodal solve, then cell update and geometry at the new
   // positions (StageEnd::ForRemap for the last stage of a step that the remap
-  // follows).
+  // follows); returns the next dt's bound over all ranks.
   StepLimit stage(double dt_stage, bool last_stage);
+  // The stage's phases, each under its timer:
+  // 1. corner forces and matrices of the present state;
+  void computeCorners();
+  // 2. node velocities and the new node positions;
+  void solveNodesAndMove(double dt_stage);
+  // 3. ghost nodes from their owners (a decomposed run);
+  void completeGhostNodes(double dt_stage);
+  // 4. cell velocities, energies, materials and geometry at the new positions,
+  //    with this rank's time-step candidate;
+  StepLimit updateCells(double dt_stage, StageEnd what);
+  // 5. the outer ghost layer's cells from their owners (a decomposed run).
+  void completeOuterGhostCells(StageEnd what);
   // The smallest candidate over every rank's owned cells, located by global cell id.
   StepLimit overAllRanks(StepLimit limit) const;
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Fault injection (issue 30): what a run promises when it is abused, on
-# sedov at 15^3 cells (a checkpoint every step) and 32^3 (the full disk).
+# sedov at 23^3 cells (a checkpoint every step) and 30^3 (the full disk).
 #  1. kill -9, ten times, each soon after a checkpoint write has begun: the
 #     last checkpoint always restarts (a half-written one is never taken),
 #     and the run, restarted after each kill, ends with the bits of an
@@ -12,6 +12,15 @@
 #     half-written left, the previous checkpoint restarts, history.csv in
 #     step with the last step taken.
 #  4. one rank of a 2-rank job killed: the job ends, non-zero, within 60 s.
+#  5. hostile options, decks, checkpoints, outputs and signals: Kokkos'
+#     number flags and thread counts, a length out of range, numbers as
+#     strings or in hex, a long path, a directory as a checkpoint, a
+#     checkpoint's format attribute edited, a restart under other keys or
+#     below the time-step floor: exit code 2 and one line; a directory where
+#     a result file goes, an output filesystem out of space or inodes (1 and
+#     2 ranks): exit 3 and one line, never exit 0 without summary.json;
+#     SIGTERM, SIGINT, SIGUSR1: exit 4 with a checkpoint and summary.json
+#     "stopped", a second signal ends the run at once.
 #   tests/fault_injection.sh LAGREMAP_EXE SCRATCH_DIR [SEED]
 set -euo pipefail
 exe=$1
@@ -46,7 +55,7 @@ check_restarts() {
 }
 
 # --- 1. kill -9 during checkpoints
-sedov=(--problem sedov --scale 0.5 --checkpoint-every 1 --quiet)
+sedov=(--problem sedov --scale 0.75 --checkpoint-every 1 --quiet)
 "$exe" "${sedov[@]}" --output "$out/whole" > "$out/whole.log" 2>&1 ||
   fail "the uninterrupted run failed: $(cat "$out/whole.log")"
 run=$out/killed
@@ -190,4 +199,122 @@ status=0
 wait $launcher || status=$?
 [ $status -ne 0 ] || fail "the 2-rank job with a killed rank exited 0"
 echo "one rank killed: the job ended (exit $status)"
+# --- 5. hostile input, outputs and signals
+# expect CODE TEXT ARGS...: lagremap ARGS exits CODE with one line on stderr
+# holding TEXT.
+expect() {
+  local code=$1 text=$2 status=0
+  shift 2
+  "$exe" "$@" > "$out/case.out" 2> "$out/case.err" || status=$?
+  local args="$*"
+  [ ${#args} -le 300 ] || args="${args:0:150}...${args: -150}"
+  [ $status -eq "$code" ] || fail "$args: exit $status, not $code: $(head -c 600 "$out/case.err")"
+  [ "$(wc -l < "$out/case.err")" -eq 1 ] || fail "$args: not one line: $(head -c 600 "$out/case.err")"
+  grep -qF -- "$text" "$out/case.err" || fail "$args: no '$text' in: $(head -c 600 "$out/case.err")"
+}
+sod=(--problem sod --scale 0.25 --quiet --output "$out/sod")
+expect 2 "--kokkos-threads=-3: must be at least 1" "${sod[@]}" --kokkos-threads=-3
+expect 2 "--kokkos-threads=abc: expects a whole number" "${sod[@]}" --kokkos-threads=abc
+expect 2 "expects --kokkos-threads=N" "${sod[@]}" --kokkos-threads
+expect 2 "--kokkos-num-threads=-1" "${sod[@]}" --kokkos-num-threads=-1
+expect 2 "--kokkos-device-id=-5" "${sod[@]}" --kokkos-device-id=-5
+expect 2 "--kokkos-num-devices=-1" "${sod[@]}" --kokkos-num-devices=-1
+expect 2 "at most 512 threads" "${sod[@]}" --kokkos-threads=5000
+OMP_NUM_THREADS=100000 expect 2 "OMP_NUM_THREADS=100000: at most 512" "${sod[@]}"
+expect 2 "rod.length = 1e+300 m is out of range" --problem rod --set rod.length=1e300
+expect 2 "bad value '0x1p1' for key 'left.rho'" "${sod[@]}" --set left.rho=0x1p1
+printf 'problem = "sod"\n[left]\nrho = "2.0"\n' > "$out/string.toml"
+expect 2 "key 'left.rho' is a number" --input "$out/string.toml" --quiet --output "$out/sod"
+printf 'problem = "sod"\n[mesh]\nnx = 0x40\n' > "$out/hex.toml"
+expect 2 "write the number in decimal" --input "$out/hex.toml" --quiet --output "$out/sod"
+long=$out/$(printf 'a%.0s' $(seq 5000))
+expect 2 "File name too long" "${sod[@]}" --restart "$long"
+[ "$(wc -c < "$out/case.err")" -lt 300 ] || fail "a long path: a $(wc -c < "$out/case.err")-byte line"
+expect 2 "is a directory, not a checkpoint file" "${sod[@]}" --restart "$out"
+# A checkpoint: sod stopped at step 20 (exit 3 by the step limit)
+"$exe" "${sod[@]}" --set numerics.max_steps=20 > /dev/null 2>&1 || true
+checkpoint=$out/sod/checkpoint.h5
+[ -f "$checkpoint" ] || fail "the stopped sod left no checkpoint"
+expect 2 "numerics.dt_min_fraction x t_end" "${sod[@]}" --restart "$checkpoint" \
+  --set numerics.dt_min_fraction=0.5
+expect 2 "was written with left.rho=1; this run has left.rho=2" "${sod[@]}" \
+  --restart "$checkpoint" --set left.rho=2
+jc=(--problem rod --scale 0.25 --quiet --set metal.jc_B=3e8 --set metal.jc_n=0.3)
+"$exe" "${jc[@]}" --set metal.hardening=johnson_cook --output "$out/jc" \
+  --set numerics.max_steps=5 > /dev/null 2>&1 || true
+expect 2 "this run has metal.hardening=perfect" "${jc[@]}" --set metal.hardening=perfect \
+  --output "$out/jc" --restart "$out/jc/checkpoint.h5"
+if $python -c "import h5py" 2> /dev/null; then
+  cp "$checkpoint" "$out/format_1.h5"
+  $python - "$out/format_1.h5" <<'PY'
+import sys
+import h5py
+import numpy
+with h5py.File(sys.argv[1], "r+") as f:  # (fixed-length text, as written)
+    f.attrs["format"] = numpy.bytes_(b"lagremap checkpoint 1")
+PY
+  expect 2 "corrupted" "${sod[@]}" --restart "$out/format_1.h5"
+fi
+# A directory where a result file goes
+for file in summary.json sod_profile.csv; do
+  rm -rf "$out/sod" && mkdir -p "$out/sod/$file"
+  expect 3 "$out/sod/$file" "${sod[@]}"
+done
+rm -rf "$out/sod"
+# An output filesystem out of space or inodes, at each of the run's files
+starved=$out/starved
+mkdir -p "$starved"
+if [ "$(id -u)" -eq 0 ] && mount -t tmpfs -o size=1m tmpfs "$starved" 2> /dev/null; then
+  umount "$starved"
+  trap 'umount "$starved" 2> /dev/null || true' EXIT
+  for ranks in 1 2; do
+    for limit in size=72k nr_inodes=4 nr_inodes=5 nr_inodes=6 nr_inodes=7 nr_inodes=8 \
+      nr_inodes=9 nr_inodes=10; do
+      mount -t tmpfs -o "size=8m,$limit" tmpfs "$starved"
+      status=0
+      timeout 120 mpiexec -np $ranks --bind-to none "$exe" --problem sod --scale 0.5 --quiet \
+        --output "$starved/run" > "$out/starved.log" 2>&1 || status=$?
+      lines=$(grep -c '^lagremap' "$out/starved.log" || true)
+      case $status in
+        0) [ -f "$starved/run/summary.json" ] ||
+          fail "output out of $limit, $ranks ranks: exit 0 and no summary.json" ;;
+        3) [ "$lines" -eq 1 ] ||
+          fail "output out of $limit, $ranks ranks: $lines lines: $(cat "$out/starved.log")" ;;
+        *) fail "output out of $limit, $ranks ranks: exit $status: $(cat "$out/starved.log")" ;;
+      esac
+      umount "$starved"
+    done
+  done
+  trap - EXIT
+  echo "starved output: exit 3 and one line, or 0 with summary.json (space, inodes; 1, 2 ranks)"
+else
+  echo "starved output: skipped (mounting a small tmpfs needs root)"
+fi
+# Signals: the run stops at the end of its step with its checkpoint
+for signal in TERM INT USR1; do
+  rm -rf "$out/signal"
+  "$exe" --problem sedov --quiet --output "$out/signal" > /dev/null 2> "$out/signal.err" &
+  pid=$!
+  sleep 2
+  kill -$signal $pid
+  status=0
+  wait $pid || status=$?
+  [ $status -eq 4 ] || fail "SIG$signal: exit $status, not 4: $(cat "$out/signal.err")"
+  [ "$(wc -l < "$out/signal.err")" -eq 1 ] || fail "SIG$signal: $(cat "$out/signal.err")"
+  grep -q '"status": "stopped"' "$out/signal/summary.json" ||
+    fail "SIG$signal: summary.json not \"stopped\""
+  check_restarts "$out/signal/checkpoint.h5" --problem sedov
+done
+# A second signal ends it at once (killed by it: 128 + 15)
+rm -rf "$out/signal"
+"$exe" --problem sedov --scale 2 --quiet --output "$out/signal" > /dev/null 2>&1 &
+pid=$!
+sleep 2
+kill -TERM $pid
+sleep 0.5 # (two pending at once would be one)
+kill -TERM $pid
+status=0
+wait $pid || status=$?
+[ $status -eq 143 ] || fail "two SIGTERMs: exit $status, not 143"
+echo "hostile input, outputs, signals: one line and the documented exit code each"
 echo "fault_injection: all passed in $((SECONDS - start)) s"
