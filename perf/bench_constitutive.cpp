@@ -151,7 +151,7 @@ class PointwiseData {
         });
   }
 
-  // Mirrors the hypo-elastic branch of updateCell (kernels/nodal_solver.hpp).
+  // Mirrors the hypo-elastic branch of updateCell (updateMaterials, kernels/material_update.hpp).
   void hypoElastic(double dt) const {
     const double mu = al_.mu, yield_stress = al_.yield_stress;
     const auto grad_v = grad_v_;

@@ -25,6 +25,8 @@
 #include <vector>
 
 #include "bench_support.hpp"
+#include "kernels/cell_update.hpp"
+#include "kernels/corner_terms.hpp"
 #include "kernels/geometry.hpp"
 #include "kernels/nodal_solver.hpp"
 #include "kernels/remap.hpp"

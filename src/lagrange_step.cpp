@@ -2,6 +2,9 @@
 
 #include <utility>
 
+#include "kernels/cell_update.hpp"
+#include "kernels/corner_terms.hpp"
+#include "kernels/nodal_solver.hpp"
 #include "parallel.hpp"
 #include "state_setup.hpp"
 

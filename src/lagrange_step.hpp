@@ -11,8 +11,8 @@
 #include "data/mesh.hpp"
 #include "data/state.hpp"
 #include "decomposition.hpp"
+#include "kernels/corner_controls.hpp"
 #include "kernels/geometry.hpp"
-#include "kernels/nodal_solver.hpp"
 #include "timers.hpp"
 
 namespace lagremap {

@@ -183,7 +183,7 @@ TEST(RemapProblems, BallHitsThePlateAndSlowsDown) {
   // The near-vacuum gas (material 2) heats no more than the aluminium it
   // shares cells with: when its own pdV work counted at 1e-9 of a cell's
   // mass, compression in the Lagrangian step and work-free re-expansion in
-  // the remap ratcheted it up to 1e12 J/kg (nodal_solver.hpp, kMassTrace).
+  // the remap ratcheted it up to 1e12 J/kg (mixed_cell_budget.hpp, kMassTrace).
   const FinalFields& fields = result.fields;
   double e_gas_max = 0.0, e_aluminium_max = 0.0;
   for (Index c = 0; c < Index(fields.m_k.extent(0)); ++c) {
@@ -199,7 +199,7 @@ TEST(RemapProblems, BallHitsThePlateAndSlowsDown) {
 
 // The ball's first steps at coarse resolutions where the ball's front shares
 // cells with near-vacuum gas at rest (1e-5 kg/m^3, 2.5 J/kg): without the
-// acoustic bound on the corner reconstruction (nodal_solver.hpp) a gas cell
+// acoustic bound on the corner reconstruction (corner_stencil.hpp) a gas cell
 // beside aluminium at 1000 m/s took node velocities of 6e5 m/s and tangled
 // (--scale 0.2, step 6) or went to negative energy (--scale 0.5, step 2).
 TEST(RemapProblems, BallStartsBesideNearVacuumAtCoarseResolutions) {

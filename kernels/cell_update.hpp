@@ -1,0 +1,161 @@
+// The cell update at the end of a stage (docs/method.md §A4): the corner
+// forces F_cp = M_cp V_p - B_cp from the solved node velocities
+// (nodal_solver.hpp), each cell's momentum and total energy, then its
+// materials (material_update.hpp); and updateCellsAndGeometry, which follows
+// it with the cell's geometry and closure at the new node positions
+// (geometry.hpp) in one sweep, or in separate kernels in the staged form.
+// Its kernel launchers are `static` (internal linkage: docs/method.md §7.2).
+#pragma once
+
+#include "../data/mesh.hpp"
+#include "../data/state.hpp"
+#include "geometry.hpp"
+#include "hex.hpp"
+#include "kernel_form.hpp"
+#include "material_update.hpp"
+#include "time_step.hpp"
+
+namespace lagremap {
+
+// Corner forces and the update of one cell from the start-of-step state
+// (docs/method.md §A4): F_cp = M_cp V_p - B_cp,
+//   m_c dV_c/dt = sum_p F_cp,  m_c dE_c/dt = sum_p F_cp . V_p,
+// and dv_c/dt = sum_p A_cp . V_p for the next time step.
+// Returns the cell's new specific internal energy.
+KOKKOS_FORCEINLINE_FUNCTION double updateCellMotion(const CellNodesView& cell_nodes, const State& s,
+                                                    double dt_stage, Index c) {
+  Vec3 force{0, 0, 0};
+  double power = 0.0, dvdt = 0.0;
+  for (int p = 0; p < 8; ++p) {
+    const Index corner = 8 * c + p;
+    const Vec3 v_node = loadVec3(s.v_n, cell_nodes(c, p));
+    const Vec3 f_corner = loadSym(s.M_cp, corner) * v_node - loadVec3(s.B_cp, corner);
+    force += f_corner;
+    power += dot(f_corner, v_node);
+    dvdt += dot(loadVec3(s.A_cp, corner), v_node);
+  }
+  const double dt_over_m = dt_stage / s.m_c(c);
+  const Vec3 velocity = loadVec3(s.v_c0, c) + dt_over_m * force;
+  const double total_energy = s.E_c0(c) + dt_over_m * power;
+  storeVec3(s.v_c, c, velocity);
+  s.E_c(c) = total_energy;
+  s.dvdt_c(c) = dvdt;
+  return total_energy - 0.5 * dot(velocity, velocity);
+}
+
+// ... and its materials (updateMaterials).
+KOKKOS_INLINE_FUNCTION void updateCell(const CellNodesView& cell_nodes, const Vec3View& x_n,
+                                       const State& s, double dt_stage, Index c,
+                                       StageRelaxation& relaxation) {
+  updateMaterials(cell_nodes, x_n, s, dt_stage, c, updateCellMotion(cell_nodes, s, dt_stage, c),
+                  relaxation);
+}
+
+// One part of every cell's materials' update (the staged form), from the
+// cell's stored E and V.
+template <int kParts>
+static void updateMaterialParts(const char* label, const Mesh& mesh, const State& state,
+                                double dt_stage) {
+  const auto cell_nodes = mesh.cell_nodes;
+  const auto x_n = mesh.x_n;
+  const auto s = state;
+  Kokkos::parallel_for(
+      label, Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells), KOKKOS_LAMBDA(const Index c) {
+        const Vec3 velocity = loadVec3(s.v_c, c);
+        StageRelaxation relaxation;
+        updateMaterials<kParts>(cell_nodes, x_n, s, dt_stage, c,
+                                s.E_c(c) - 0.5 * dot(velocity, velocity), relaxation);
+      });
+}
+
+// Every cell's update: the staged form runs the cells' motion and their
+// materials as two kernels (the materials' e_new = E - |V|^2/2 from the
+// stored E and V: the same bits).
+static inline void updateCells(const Mesh& mesh, const State& state, double dt_stage,
+                               KernelForm form = defaultKernelForm()) {
+  const auto cell_nodes = mesh.cell_nodes;
+  const auto x_n = mesh.x_n;
+  const auto s = state;
+  if constexpr (kFusedKernelsBuilt) {
+    if (form == KernelForm::Fused) {
+      Kokkos::parallel_for(
+          "lagremap::cell_update::corner_forces", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
+          KOKKOS_LAMBDA(const Index c) {
+            StageRelaxation relaxation;
+            updateCell(cell_nodes, x_n, s, dt_stage, c, relaxation);
+          });
+      return;
+    }
+  }
+  Kokkos::parallel_for(
+      "lagremap::cell_update::corner_forces", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
+      KOKKOS_LAMBDA(const Index c) { updateCellMotion(cell_nodes, s, dt_stage, c); });
+  // the materials' energies, then their deviators (hypo-elastic S, Neo-Hookean
+  // B), each a kernel of its own
+  updateMaterialParts<kMaterialEnergies>("lagremap::cell_update::material_energies", mesh, state,
+                                         dt_stage);
+  if (state.has_solids) {
+    updateMaterialParts<kHypoElasticParts>("lagremap::cell_update::hypo_elastic", mesh, state,
+                                           dt_stage);
+  }
+  if (state.has_neo_hookean) {
+    updateMaterialParts<kNeoHookeanParts>("lagremap::cell_update::neo_hookean", mesh, state,
+                                          dt_stage);
+  }
+}
+
+// The end of a stage in one sweep: each cell's update, then its geometry and
+// closure at the new node positions (both cell-local, so one kernel does them
+// while the cell's corner records are in cache); returns the time-step
+// candidates of the new state. Same results as updateCells + computeGeometry.
+// `what`: see StageEnd.
+// The staged form (KernelForm) runs the cell update and the geometry as two
+// kernels.
+static inline StepLimit updateCellsAndGeometry(const Mesh& mesh, const State& state,
+                                               double dt_stage, const TimeStepControls& controls,
+                                               StageEnd what = StageEnd::Full,
+                                               KernelForm form = defaultKernelForm()) {
+  const auto cell_nodes = mesh.cell_nodes;
+  const auto x_n = mesh.x_n;
+  const auto s = state;
+  if constexpr (kFusedKernelsBuilt) {
+    if (form == KernelForm::Fused) {
+      if (what == StageEnd::ForRemap) {
+        return stepLimitOverCellGeometries<false>(
+            "lagremap::cell_update::update_and_shape", mesh,
+            KOKKOS_LAMBDA(const Index c, const hex::CellGeometry& geometry, StepLimit& best) {
+              StageRelaxation relaxation;
+              updateCell(cell_nodes, x_n, s, dt_stage, c, relaxation);
+              cellShapeForRemap(geometry.shape, s, c, best, &relaxation);
+            });
+      }
+      return stepLimitOverCellGeometries<true>(
+          "lagremap::cell_update::update_and_geometry", mesh,
+          KOKKOS_LAMBDA(const Index c, const hex::CellGeometry& geometry, StepLimit& best) {
+            StageRelaxation relaxation;
+            updateCell(cell_nodes, x_n, s, dt_stage, c, relaxation);
+            cellThermoOnGeometry(geometry, s, controls, c, best, true, &relaxation);
+          });
+    }
+  }
+  updateCells(mesh, state, dt_stage, KernelForm::Staged);
+  // the mixed cells' volume sharing, then the checks or the closure on the
+  // shared volumes (a kernel each: together they held 154 registers on sm_90)
+  if (state.n_materials > 1) shareVolumeChanges(mesh, state);
+  const bool z_prisms = mesh.z_prisms;
+  if (what == StageEnd::ForRemap) {
+    return stepLimitOverCellNodes(
+        "lagremap::cell_update::shape", mesh,
+        KOKKOS_LAMBDA(const NodesOfCell& nodes, StepLimit& best) {
+          hex::PrismBase base{};  // (read on prisms only)
+          cellShapeForRemap(stagedShape(nodes, z_prisms, base), s, nodes.c, best, nullptr, false);
+        });
+  }
+  return stepLimitOverCellNodes(
+      "lagremap::cell_update::geometry", mesh,
+      KOKKOS_LAMBDA(const NodesOfCell& nodes, StepLimit& best) {
+        cellThermoOnNodes(nodes, z_prisms, s, controls, best, false);
+      });
+}
+
+}  // namespace lagremap

@@ -1,0 +1,113 @@
+// The corner terms of a stage (docs/method.md §A4, §A5), computeCornerTerms:
+// per cell, V and sigma reconstructed at its nodes and B_cp = M_cp V_c(p) -
+// sigma_c(p) A_cp (the corner vectors A_cp and impedances M_cp come from
+// computeGeometry), in the fused form (corner_terms_fused.hpp) or the staged
+// one (corner_terms_staged.hpp); with `Gather::Atomics` it also scatters the
+// node sums M_n, B_n. The node solve (nodal_solver.hpp) follows.
+// Its kernel launchers are `static` (internal linkage: docs/method.md §7.2).
+#pragma once
+
+#include "../data/mesh.hpp"
+#include "../data/state.hpp"
+#include "corner_controls.hpp"
+#include "corner_terms_fused.hpp"
+#include "corner_terms_staged.hpp"
+#include "geometry.hpp"
+#include "hex.hpp"
+#include "kernel_form.hpp"
+
+namespace lagremap {
+
+namespace detail {
+
+// The corner terms of a mesh's cells under `controls`.
+inline CornerTerms cornerTerms(const Mesh& mesh, const State& state,
+                               const CornerControls& controls) {
+  return {mesh.cell_nodes,
+          mesh.cell_neighbors,
+          mesh.cell_face_side,
+          mesh.side_kind,
+          mesh.x_n,
+          state,
+          mesh.z_prisms,
+          controls.order >= 2,
+          controls.gather == Gather::Atomics};
+}
+
+}  // namespace detail
+
+// The fused form: one kernel, cells in the lanes of a vector where they can.
+// (a template: instantiated where it is called, never in a device build)
+template <class Terms>
+static void computeFusedCornerTerms(const Mesh& mesh, const Terms& terms) {
+  const Index n_cells = mesh.n_cells;
+  Kokkos::parallel_for(
+      "lagremap::corners::reconstruct_and_impedance",
+      Kokkos::RangePolicy<ExecSpace>(0, cellChunks(mesh)), KOKKOS_LAMBDA(const Index chunk) {
+        const Index first = chunk * hex::kCellLanes;
+        const int count = chunkCells(n_cells, first);
+#if LAGREMAP_CELL_PACKS
+        if (count == hex::kCellLanes && terms.second_order &&
+            terms.lanesShareStencilShape(first, count)) {
+          terms.template ofCells<hex::CellPack>(first);
+          return;
+        }
+#endif
+        for (int i = 0; i < count; ++i) terms.template ofCells<double>(first + i);
+      });
+}
+
+// The staged form's rows of computeCornerTerms.
+inline MatRealView allocateCornerRows(const Mesh& mesh) {
+  return MatRealView("lagremap::corners::rows", mesh.n_cells, detail::corner_rows::kColumns);
+}
+
+// Per cell: V and sigma reconstructed at its nodes (docs/method.md §A5: piecewise
+// constant at first order; second order: least-squares gradients limited by
+// one frame-independent factor each, a solid's whole Cauchy stress as a
+// tensor, a fluid's pressure as a scalar), then B_cp = M_cp V_c(p) -
+// sigma_c(p) A_cp. On CPU builds the cells go kCellLanes at a time in the
+// lanes of a vector where their stencils have one shape (the same bits as
+// cell by cell, docs/method.md §7.1).
+// `rows`: the staged form's per-cell rows (allocateCornerRows, KernelForm::
+// Staged); without them the fused form runs (built on CPU backends only).
+static inline void computeCornerTerms(const Mesh& mesh, const State& state,
+                                      const CornerControls& controls,
+                                      const MatRealView& rows = {}) {
+  const detail::CornerTerms terms = detail::cornerTerms(mesh, state, controls);
+  if (terms.atomics) {
+    Kokkos::deep_copy(state.M_n, 0.0);
+    Kokkos::deep_copy(state.B_n, 0.0);
+  }
+  const auto policy = Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells);
+  if (!kFusedKernelsBuilt || rows.extent(0) > 0) {
+    // (a caller outside the time loop may leave the rows to this call)
+    const MatRealView own_rows = rows.extent(0) > 0 ? rows : allocateCornerRows(mesh);
+    const detail::StagedCorners staged{
+        terms.cell_nodes, terms.neighbors, terms.face_side,    terms.side_kind, terms.x_n,
+        terms.s,          terms.z_prisms,  terms.second_order, terms.atomics,   own_rows};
+    if (staged.second_order) {
+      Kokkos::parallel_for(
+          "lagremap::corners::velocity_limiter", policy,
+          KOKKOS_LAMBDA(const Index c) { staged.velocityLimiter(c); });
+      // (at most 128 registers a thread, 4 blocks of 128 threads an SM: it
+      // needs 130 unbounded, and no spill bounded)
+      Kokkos::parallel_for(
+          "lagremap::corners::stress_gradient",
+          Kokkos::RangePolicy<ExecSpace, Kokkos::LaunchBounds<128, 4>>(0, mesh.n_cells),
+          KOKKOS_LAMBDA(const Index c) { staged.stressGradient(c); });
+      if (terms.s.has_solids) {
+        Kokkos::parallel_for(
+            "lagremap::corners::stress_limiter", policy,
+            KOKKOS_LAMBDA(const Index c) { staged.stressLimiter(c); });
+      }
+    }
+    Kokkos::parallel_for(
+        "lagremap::corners::right_hand_sides", policy,
+        KOKKOS_LAMBDA(const Index c) { staged.rightHandSides(c); });
+    return;
+  }
+  if constexpr (kFusedKernelsBuilt) computeFusedCornerTerms(mesh, terms);
+}
+
+}  // namespace lagremap
