@@ -245,7 +245,7 @@ TEST(CommandLine, ALongValueIsCutInTheErrorLine) {
       {"--problem sod --output-times 0.1,x" + value, "--output-times"},
       {"--problem sod --x" + value, "not expected"},
       {"--problem sod --mode '" + spaced + "'", "--mode"},
-      {"--input " + deck, "for key 'left.p'"},
+      {"--input " + deck, "key 'left.p'"},
   };
   for (const auto& [args, expected] : cases) {
     const auto result = runLagremap(args + " --output " + dir + "/out");
