@@ -3,20 +3,11 @@
 // the tangential balance exactly.
 #include <gtest/gtest.h>
 
-#include <random>
-
 #include "kernels/nodal_solver.hpp"
+#include "random_draws.hpp"
 
 namespace lagremap {
 namespace {
-
-std::mt19937 g_rng(4242);
-double uniform(double lo, double hi) {
-  return std::uniform_real_distribution<double>(lo, hi)(g_rng);
-}
-Vec3 randomVec(double scale) {
-  return {uniform(-scale, scale), uniform(-scale, scale), uniform(-scale, scale)};
-}
 
 SymMat3 randomSpd() {
   Mat3 a = zeroMat();

@@ -6,22 +6,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <random>
 #include <vector>
 
 #include "kernels/hex.hpp"
 #include "kernels/reconstruction.hpp"
+#include "random_draws.hpp"
 
 namespace lagremap {
 namespace {
-
-std::mt19937 g_rng(4242);
-double uniform(double lo, double hi) {
-  return std::uniform_real_distribution<double>(lo, hi)(g_rng);
-}
-Vec3 randomVec(double scale) {
-  return {uniform(-scale, scale), uniform(-scale, scale), uniform(-scale, scale)};
-}
 
 TEST(Reconstruction, LeastSquaresIsExactForLinearFields) {
   for (int trial = 0; trial < 100; ++trial) {
