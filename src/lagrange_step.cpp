@@ -88,12 +88,12 @@ StepLimit LagrangeStep::stage(double dt_stage, bool last_stage) {
 
 void LagrangeStep::computeCorners() {
   auto scope = timers_.scope(Phase::Corners);
-  computeCornerTerms(mesh_, state_, {numerics_.order, numerics_.gather}, corner_rows_);
+  computeCornerTerms(mesh_, state_, cornerControls(), corner_rows_);
 }
 
 void LagrangeStep::solveNodesAndMove(double dt_stage) {
   auto scope = timers_.scope(Phase::NodalSolve);
-  nodalSolve(mesh_, state_, {numerics_.order, numerics_.gather}, dt_stage);
+  nodalSolve(mesh_, state_, cornerControls(), dt_stage);
   std::swap(mesh_.x_n, state_.x_n_next);  // the mesh moves: no copy, the Views trade places
 }
 

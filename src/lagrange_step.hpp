@@ -73,6 +73,9 @@ class LagrangeStep {
   // positions (StageEnd::ForRemap for the last stage of a step that the remap
   // follows); returns the next dt's bound over all ranks.
   StepLimit stage(double dt_stage, bool last_stage);
+  // The reconstruction's order and the node gather, as the corner terms and
+  // the node solve read them.
+  CornerControls cornerControls() const { return {numerics_.order, numerics_.gather}; }
   // The stage's phases, each under its timer:
   // 1. corner forces and matrices of the present state;
   void computeCorners();
