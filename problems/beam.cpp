@@ -34,7 +34,7 @@ void declareBeam(Config& config) {
   config.addReal("mode.Omega", 78.834, "1/m", "wave number Omega (Omega L = 4.730)");
   config.addReal("mode.g1", 56.6368, "-", "mode coefficient g1");
   config.addReal("mode.g2", 57.6455, "-", "mode coefficient g2");
-  if (config.remapMode()) {
+  if (config.remapSetup()) {
     // The plate fills the domain's depth: its z faces are the domain's symmetry planes.
     config.addReal("domain.length", 0.07, "m", "fixed mesh extent along x (remap)");
     config.addReal("domain.height", 0.03, "m", "fixed mesh extent along y (remap)");
@@ -65,7 +65,7 @@ ProblemSetup setupBeam(const Config& config) {
         0.0, a * w * (g2 * (std::cosh(k) + std::cos(k)) - g1 * (std::sinh(k) + std::sin(k))), 0.0};
   };
   CellShapes shapes;
-  if (config.remapMode()) {
+  if (config.remapSetup()) {
     const AmbientGas gas = readAmbientGas(config, "beam");
     const double domain_length = config.real("domain.length");
     const double domain_height = config.real("domain.height");

@@ -50,7 +50,7 @@ void markPerfectPlasticityOnly(const Config& config, std::vector<Check>& checks,
 }
 
 void setModeIndependentReferences(const Config& config, std::vector<Check>& checks) {
-  if (!config.remapMode()) return;
+  if (!config.remapSetup()) return;
   for (Check& check : checks)
     if (!check.lagrange_reference) check.lagrange_reference = check.reference;
 }

@@ -172,8 +172,12 @@ SideBoundaries readBoundaries(const Config& config) {
   return boundaries;
 }
 
-void refuseLagrangeMode(const Config& config, const std::string& problem, const std::string& why) {
-  if (config.remapMode()) return;
+void refuseLagrangeMode(Config& config, const std::string& problem, const std::string& why) {
+  if (config.remapSetup()) return;
+  if (config.aleMode()) {  // ALE starts from the remap set-up
+    config.useRemapSetup();
+    return;
+  }
   throw ConfigError(problem + ": lagrange mode is not available (" + why + "); use --mode remap");
 }
 

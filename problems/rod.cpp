@@ -28,7 +28,7 @@ constexpr double kPublishedLength = 21.5e-3, kPublishedLengthTolerance = 0.25e-3
 constexpr double kPublishedRadius = 7.12e-3, kPublishedRadiusTolerance = 0.2e-3;
 
 void declareRod(Config& config) {
-  const bool remap = config.remapMode();
+  const bool remap = config.remapSetup();
   config.addReal("t_end", 80e-6, "s", "final time");
   declareHypoSolidKeys(config, "metal", "Cu");
   config.addReal("rod.length", 32.4e-3, "m", "rod length L along x");
@@ -102,7 +102,7 @@ ProblemSetup setupRod(const Config& config) {
   const RodGeometry rod = readRod(config);
   const Vec3 velocity{-rod.speed, 0.0, 0.0};
   CellShapes shapes;
-  if (config.remapMode()) {
+  if (config.remapSetup()) {
     const AmbientGas gas = readAmbientGas(config, "rod");
     const double domain_length = config.real("domain.length");
     const double width = config.real("domain.width");
@@ -225,7 +225,7 @@ void writeSymmetryPlane(const std::string& path, const FinalFields& fields, doub
 ProblemResults finishRod(const Config& config, const FinalFields& fields,
                          const std::string& out_dir) {
   const RodGeometry rod = readRod(config);
-  const bool remap = config.remapMode();
+  const bool remap = config.remapSetup();
   writeSymmetryPlane(out_dir.empty() ? "" : out_dir + "/rod_plane_z0.csv", fields, rod.length);
   ResultFile history(out_dir.empty() ? "" : out_dir + "/rod_length.csv");
   history << "t,length\n";

@@ -30,7 +30,7 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kPaperInnerRadius = 0.051, kPaperOuterRadius = 0.079;
 
 void declareShell(Config& config) {
-  const bool remap = config.remapMode();
+  const bool remap = config.remapSetup();
   config.addReal("t_end", 130e-6, "s", "final time");
   declareHypoSolidKeys(config, "be", "Be-hypo");
   config.addReal("shell.inner_radius", 0.08, "m", "inner radius Ri");
@@ -80,7 +80,7 @@ ProblemSetup setupShell(const Config& config) {
   const double v0 = config.real("shell.v0");
   const bool howell_ball = config.text("shell.profile") == "howell_ball";
   const double e0 = p0 / (be.rho0 * be.Gamma0);  // Mie-Gruneisen at rho = rho0
-  if (config.remapMode()) {
+  if (config.remapSetup()) {
     const AmbientGas gas = readAmbientGas(config, "shell");
     const double half_width = config.real("domain.half_width");
     if (!(half_width > ro)) throw ConfigError("shell: the remap domain must contain the shell");
@@ -315,7 +315,7 @@ double stoppedShellSpeedBound(const Config& config) {
 // must lie after the stop (with 5% of its time to spare) to mean "stopped".
 std::vector<Check> shellChecks(const Config& config, double inner_min, double outer_at_stop,
                                const RadiusRange& inner, double inward_speed) {
-  const bool remap = config.remapMode();
+  const bool remap = config.remapSetup();
   const double tol = config.real("check.radius_tolerance");
   const ShellStop stop = expectedStop(config);
   const double user_inner = config.real("check.inner_radius");
@@ -370,7 +370,7 @@ std::vector<Check> shellChecks(const Config& config, double inner_min, double ou
 
 ProblemResults finishShell(const Config& config, const FinalFields& fields,
                            const std::string& out_dir) {
-  const bool remap = config.remapMode();
+  const bool remap = config.remapSetup();
   const double inner_min = smallestInnerRadius(fields);
   const double inward_speed = finalInwardSpeed(fields, config.real("t_end"));
   // Lagrange: the shell is incompressible to first order, so the outer radius

@@ -26,7 +26,7 @@ void declareTaylor(Config& config) {
   config.addReal("geometry.length", 5.0, "m", "bar length along x");
   config.addReal("geometry.height", 1.0, "m", "bar height along y");
   config.addCellLength("geometry.thickness", 0.025, "slab thickness along z (one cell)");
-  if (config.remapMode()) {
+  if (config.remapSetup()) {
     config.addReal("domain.length", 5.5, "m", "fixed mesh extent along x (remap)");
     config.addReal("domain.height", 2.0, "m", "fixed mesh extent along y (remap)");
     config.addReal("gas.rho", 5.0, "kg/m^3", "density of the surrounding gas");
@@ -39,8 +39,8 @@ void declareTaylor(Config& config) {
     declareBoundaryKeys(config, {"wall", "free", "free", "free", "symmetry", "symmetry"});
   }
   config.addReal(
-      "check.reference_length", config.remapMode() ? kPaperLengthRemap : kPaperLengthLagrange, "m",
-      config.remapMode() ? "final length (paper, remap)" : "final length (paper, Lagrange)");
+      "check.reference_length", config.remapSetup() ? kPaperLengthRemap : kPaperLengthLagrange, "m",
+      config.remapSetup() ? "final length (paper, remap)" : "final length (paper, Lagrange)");
   config.addReal("check.length_tolerance", 0.05, "m", "tolerance on the final length");
   config.addReal("check.kinetic_fraction", 0.05, "-",
                  "largest final kinetic energy as a fraction of the initial one");
@@ -55,7 +55,7 @@ ProblemSetup setupTaylor(const Config& config) {
   }
   CellShapes shapes;
   const double vx = config.real("bar.vx");
-  if (config.remapMode()) {
+  if (config.remapSetup()) {
     const AmbientGas gas = readAmbientGas(config, "taylor");
     const double domain_length = config.real("domain.length");
     const double domain_height = config.real("domain.height");
@@ -121,7 +121,7 @@ ProblemResults finishTaylor(const Config& config, const FinalFields& fields,
   history << "t,length\n";
   for (const auto& [t, value] : fields.probe) history << t << ',' << value << '\n';
   history.write();
-  const bool remap = config.remapMode();
+  const bool remap = config.remapSetup();
   const double final_length = remap                  ? materialFrontX(fields, 0, 0.0)
                               : fields.probe.empty() ? NAN
                                                      : fields.probe.back().second;

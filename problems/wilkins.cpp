@@ -34,7 +34,7 @@ void declareWilkins(Config& config) {
   declareHypoSolidKeys(config, "al", "Al");
   config.addReal("al.p0", 1e5, "Pa", "initial pressure (e0 = p0 / (rho0 Gamma0))");
   config.addReal("flyer.vx", 800.0, "m/s", "flyer velocity");
-  const bool remap = config.remapMode();
+  const bool remap = config.remapSetup();
   config.addReal(
       "geometry.x_min", remap ? -0.04 : -0.01, "m",
       remap ? "left end of the fixed mesh (wall)" : "left end of the mesh (the flyer's back face)");
@@ -75,7 +75,7 @@ ProblemSetup setupWilkins(const Config& config) {
   const double e0 = config.real("al.p0") / (al.rho0 * al.Gamma0);
   const double v_flyer = config.real("flyer.vx");
   CellShapes shapes;
-  if (config.remapMode()) {
+  if (config.remapSetup()) {
     const AmbientGas gas = readAmbientGas(config, "wilkins");
     if (!(x_min < flyer_min)) {
       throw ConfigError("wilkins: remap mode needs gas behind the flyer (x_min < flyer_min)");
@@ -291,7 +291,7 @@ WilkinsExact wilkinsExact(const Config& config) {
   exact.flyer_min = config.real("geometry.flyer_min");
   exact.x_min = config.real("geometry.x_min");
   exact.x_max = config.real("geometry.x_max");
-  exact.gas = config.remapMode();
+  exact.gas = config.remapSetup();
   if (exact.gas) {
     exact.gamma = config.real("gas.gamma");
     exact.gas_rho = config.real("gas.rho");

@@ -248,6 +248,9 @@ std::string impossibleNumbers(LoopState loop, double step) {
   if (!(std::isfinite(loop.dt_stable_max) && loop.dt_stable_max >= 0.0)) {
     return is("dt_stable_max", loop.dt_stable_max);
   }
+  if (!(loop.lowest_mesh_quality >= -1.0 && loop.lowest_mesh_quality <= 1.0)) {
+    return is("lowest_mesh_quality", loop.lowest_mesh_quality);
+  }
   if (!(step >= 0.0 && step == std::floor(step))) return is("step", step);
   if (!(loop.time >= 0.0)) return is("time", loop.time);
   if (!(loop.initial.mass > 0.0)) return is("initial_mass", loop.initial.mass);
@@ -330,6 +333,7 @@ void writeFile(const std::string& path, const Mesh& mesh, const State& state,
     io::writeScalarAttribute(file.get(), name, value, path);
   });
   io::writeScalarAttribute(file.get(), "dt_stable_max", loop.dt_stable_max, path);
+  io::writeScalarAttribute(file.get(), "lowest_mesh_quality", loop.lowest_mesh_quality, path);
   io::writeWordAttribute(file.get(), kChecksum, io::attributesHash(file.get(), kChecksum, path),
                          path);
   {
@@ -449,6 +453,10 @@ LoopState readCheckpoint(const std::string& path, Mesh& mesh, State& state,
   loop.dt_stable_max = H5Aexists(file.get(), "dt_stable_max") > 0
                            ? io::readScalarAttribute(file.get(), "dt_stable_max", path)
                            : 0.0;
+  // (nor this: the restart's own mesh starts it)
+  loop.lowest_mesh_quality = H5Aexists(file.get(), "lowest_mesh_quality") > 0
+                                 ? io::readScalarAttribute(file.get(), "lowest_mesh_quality", path)
+                                 : 1.0;
   const std::string impossible = impossibleNumbers(loop, step);
   if (!impossible.empty()) {
     throw std::runtime_error("checkpoint '" + path + "' holds an impossible " + impossible);

@@ -23,6 +23,9 @@ struct LoopState {
   std::string keys;
   double time = 0.0, dt_prev = 0.0;
   double dt_stable_max = 0.0;  // largest stable dt so far (Numerics::dt_drop_fraction)
+  // Lowest mesh quality so far, the smallest scaled Jacobian of any step
+  // (kernels/mesh_quality.hpp).
+  double lowest_mesh_quality = 1.0;
   long step = 0;
   Vec3 impulse{0, 0, 0};  // boundary impulse and work so far (conservation audit)
   double work = 0.0, mass_in = 0.0;

@@ -122,8 +122,9 @@ struct CommandLine {
 
 void addOptions(CLI::App& app, CommandLine& line) {
   app.add_option("--problem", line.problem, "problem to run (see --list)")->check(nonEmpty());
-  app.add_option("--mode", line.mode, "lagrange (pure Lagrangian) or remap (Lagrange-Remap)")
-      ->check(CLI::IsMember({"lagrange", "remap"}));
+  app.add_option("--mode", line.mode,
+                 "lagrange (pure Lagrangian), remap (Lagrange-Remap) or ale (relaxed mesh)")
+      ->check(CLI::IsMember({"lagrange", "remap", "ale"}));
   app.add_option("--scale", line.scale, "multiply every cell count by S")->check(positiveNumber());
   app.add_option("--t-end", line.t_end, "final time [s]")->check(positiveNumber());
   app.add_option("--cfl", line.cfl, "CFL number")
@@ -167,9 +168,9 @@ void takeProblemAndModeFromDeck(CommandLine& line, bool mode_given) {
     std::string deck_mode;
     Config::peekDeck(line.input, nullptr, &deck_mode);
     if (!deck_mode.empty()) line.mode = deck_mode;
-    if (line.mode != "lagrange" && line.mode != "remap") {
+    if (line.mode != "lagrange" && line.mode != "remap" && line.mode != "ale") {
       throw ConfigError("input deck '" + line.input + "': mode '" + abbreviated(line.mode) +
-                        "' is not one of lagrange|remap");
+                        "' is not one of lagrange|remap|ale");
     }
   }
 }

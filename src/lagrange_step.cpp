@@ -123,13 +123,14 @@ void LagrangeStep::completeOuterGhostCells(StageEnd what) {
 
 void LagrangeStep::remapFollowsEveryStep() {
   remap_follows_ = true;
+  nodes_start_on_target_ = true;
   Kokkos::deep_copy(state_.x_n0, mesh_.x_n);
 }
 
 void LagrangeStep::saveStartOfStep() {
   // (with a remap after every step the nodes start each step on the remap's
   // target, which x_n0 holds: RemapStep)
-  if (!remap_follows_) Kokkos::deep_copy(state_.x_n0, mesh_.x_n);
+  if (!nodes_start_on_target_) Kokkos::deep_copy(state_.x_n0, mesh_.x_n);
   Kokkos::deep_copy(state_.v_c0, state_.v_c);
   Kokkos::deep_copy(state_.E_c0, state_.E_c);
   Kokkos::deep_copy(state_.e_ck0, state_.e_ck);

@@ -67,6 +67,10 @@ class LagrangeStep {
   // which State::x_n0 keeps from here on (the remap's target too, RemapStep):
   // saveStartOfStep leaves it.
   void remapFollowsEveryStep();
+  // ALE mode: whether a remap follows the next step (its last stage then
+  // computes only what the remap reads, as above); the nodes start each step
+  // where the last one left them, which saveStartOfStep keeps in x_n0.
+  void remapFollowsNextStep(bool follows) { remap_follows_ = follows; }
 
  private:
   // Corner terms, nodal solve, then cell update and geometry at the new
@@ -97,6 +101,7 @@ class LagrangeStep {
   PhaseTimers& timers_;
   const Halo* halo_;
   bool remap_follows_ = false;
+  bool nodes_start_on_target_ = false;  // remap mode: x_n0 holds the remap's target
   // Bit k: material k has strength, a deviator to keep (State::materials).
   unsigned solid_materials_ = 0;
   // The staged form's per-cell rows of the corner terms (empty: fused).

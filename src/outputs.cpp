@@ -208,7 +208,7 @@ HistoryFile::HistoryFile(const RunOptions& options, const Simulation& simulation
       } else {
         if (kept.empty()) {
           file_ << "step,t,dt,dt_reason,mass,momentum_x,momentum_y,momentum_z,kinetic_energy,"
-                   "internal_energy,total_energy\n";
+                   "internal_energy,total_energy,min_scaled_jacobian\n";
         }
         file_ << kept << std::setprecision(15);
         flush();
@@ -221,19 +221,23 @@ HistoryFile::HistoryFile(const RunOptions& options, const Simulation& simulation
 }
 
 void HistoryFile::start(const Simulation& simulation) {
-  if (!simulation.restarted()) writeLine(0, 0.0, 0.0, "initial", simulation.totals());
+  if (!simulation.restarted()) {
+    writeLine(0, 0.0, 0.0, "initial", simulation.totals(), simulation.meshQuality());
+  }
 }
 
 void HistoryFile::afterStep(const Simulation& simulation, const TimeStepChoice& choice) {
-  writeLine(simulation.step(), simulation.time(), choice.dt, choice.reason, simulation.totals());
+  writeLine(simulation.step(), simulation.time(), choice.dt, choice.reason, simulation.totals(),
+            simulation.meshQuality());
 }
 
 void HistoryFile::writeLine(long step, double t, double dt, const char* reason,
-                            const Totals& totals) {
+                            const Totals& totals, double mesh_quality) {
   if (!file_.is_open()) return;
   file_ << step << ',' << t << ',' << dt << ',' << reason << ',' << totals.mass << ','
         << totals.momentum.x << ',' << totals.momentum.y << ',' << totals.momentum.z << ','
-        << totals.kinetic << ',' << totals.internal << ',' << totals.total() << '\n';
+        << totals.kinetic << ',' << totals.internal << ',' << totals.total() << ',' << mesh_quality
+        << '\n';
   flush();
 }
 

@@ -28,7 +28,8 @@ MatRealView interfaceNormalStresses(const State& state);
 // never silently missing or cut.
 void writeTextFile(const std::string& path, const std::string& text);
 
-// history.csv: the totals of every step, after the initial state's line. A
+// history.csv: the totals and the mesh quality (the smallest scaled Jacobian,
+// kernels/mesh_quality.hpp) of every step, after the initial state's line. A
 // restart keeps the lines of the steps it does not redo. Creates the output
 // directory; a directory or file that cannot be written is ConfigError
 // (collective: every rank throws rank 0's message). Each line goes to disk
@@ -44,7 +45,8 @@ class HistoryFile : public LoopObserver {
   void finish(const Simulation& simulation) override;
 
  private:
-  void writeLine(long step, double t, double dt, const char* reason, const Totals& totals);
+  void writeLine(long step, double t, double dt, const char* reason, const Totals& totals,
+                 double mesh_quality);
   // Sends what the stream holds to disk; on failure cuts the file back to
   // its last whole line and stops writing.
   void flush();

@@ -193,8 +193,10 @@ const Problem& findProblem(const std::string& name);
 // solution) get it as their lagrange_reference; lagrange mode: nothing.
 void setModeIndependentReferences(const Config& config, std::vector<Check>& checks);
 // Throws ConfigError when the keys are declared for lagrange mode: the
-// problem exists only in remap mode, for the reason `why`.
-void refuseLagrangeMode(const Config& config, const std::string& problem, const std::string& why);
+// problem exists only in remap mode, for the reason `why`. In ALE mode it
+// starts from the remap set-up (Config::useRemapSetup); call it before
+// declaring any key.
+void refuseLagrangeMode(Config& config, const std::string& problem, const std::string& why);
 // The gas round the bodies of a remap set-up: gas.gamma, gas.rho, gas.p (an
 // ideal gas at rest); throws ConfigError naming the problem for impossible values.
 struct AmbientGas {

@@ -69,7 +69,7 @@ RemapStep::RemapStep(Mesh& mesh, State& state, const RemapControls& controls, Ph
   if (halo_) remapped_fields_ = remappedCellFields(state);
 }
 
-RemapBoundaryFlux RemapStep::apply() {
+RemapBoundaryFlux RemapStep::apply(const Vec3View& target) {
   RemapBoundaryFlux crossed;
   {
     auto scope = timers_.scope(Phase::Remap);
@@ -77,9 +77,9 @@ RemapBoundaryFlux RemapStep::apply() {
     remapDensities(state_, layout_, fields_);
     remapGradients(mesh_, state_, layout_, controls_, fields_);
     if (!controls_.reconstruct) Kokkos::deep_copy(fields_.gradient, 0.0);
-    computeSweptFaces(mesh_, mesh_.x_n, state_.x_n0, swept_, controls_.kernels);
+    computeSweptFaces(mesh_, mesh_.x_n, target, swept_, controls_.kernels);
     crossed = remapUpdate(mesh_, state_, layout_, controls_, fields_, swept_);
-    Kokkos::deep_copy(mesh_.x_n, state_.x_n0);
+    Kokkos::deep_copy(mesh_.x_n, target);
   }
   if (halo_) {  // ghost cells: their owners' remapped state (docs/method.md §7.4, src/fields.hpp)
     auto scope = timers_.scope(Phase::Halo);

@@ -32,7 +32,11 @@ class RemapStep {
   // Remaps the state of the Lagrangian mesh onto the target mesh and moves the
   // mesh back; returns what crossed the outer boundary (mass, momentum,
   // total energy). The geometry of the state is stale afterwards.
-  RemapBoundaryFlux apply();
+  RemapBoundaryFlux apply() { return apply(state_.x_n0); }
+  // The same onto another mesh of the same connectivity, a small displacement
+  // from the Lagrangian one (ALE mode's relaxed mesh, src/mesh_relaxation.hpp),
+  // where the mesh then stays.
+  RemapBoundaryFlux apply(const Vec3View& target);
   // Puts back the masses of the start of the last apply(), which the
   // Lagrangian step does not change and so does not keep (its
   // restoreStartOfStep puts back the rest of the state, volume fractions

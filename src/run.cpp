@@ -25,8 +25,8 @@ bool RunResult::checksPass() const {
 namespace {
 
 void checkRunOptions(const RunOptions& options) {
-  if (options.mode != "lagrange" && options.mode != "remap") {
-    throw ConfigError("unknown mode '" + options.mode + "' (known: lagrange, remap)");
+  if (options.mode != "lagrange" && options.mode != "remap" && options.mode != "ale") {
+    throw ConfigError("unknown mode '" + options.mode + "' (known: lagrange, remap, ale)");
   }
   const Config& config = options.config;
   if (config.mode() != options.mode) {
@@ -189,7 +189,7 @@ RunResult resultOf(const Simulation& simulation) {
   for (int k = 0; n_materials > 1 && k < n_materials; ++k) {
     result.interfaces.push_back(measureInterface(simulation.mesh(), fields, k));
   }
-  if (n_materials > 1 && simulation.options().mode == "remap") {
+  if (n_materials > 1 && simulation.options().config.remaps()) {
     result.mixed_cells = measureMixedCells(fields, simulation.materials());
   }
   return result;

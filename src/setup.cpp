@@ -11,11 +11,33 @@
 
 namespace lagremap {
 
+namespace {
+
+// ALE mode's keys (docs/method.md §6, docs/running.md).
+void declareAleKeys(Config& config) {
+  config.addChoice("ale.rule", "winslow", {"winslow", "initial"},
+                   "target mesh of the relaxation: winslow (equipotential smoothing of the "
+                   "Lagrangian mesh, boundaries kept) or initial (the initial mesh: remap mode's "
+                   "target at ale.weight 1); docs/method.md §6");
+  config.addReal("ale.weight", 1.0, "-",
+                 "fraction of the way from the Lagrangian position to the rule's (0: the "
+                 "Lagrangian mesh, no remap: lagrange mode)");
+  config.addInteger("ale.every", 1, "relax and remap after every this many steps");
+  config.addReal("ale.max_move", 0.2, "-",
+                 "largest move of a node in one relaxation, a fraction of its shortest edge");
+  config.addReal("ale.quality_floor", 0.2, "-",
+                 "scaled Jacobian below which the relaxation may not take a cell (nor below "
+                 "its Lagrangian value): such cells keep their Lagrangian nodes");
+}
+
+}  // namespace
+
 Config declareConfig(const Problem& problem, const std::string& mode) {
   Config config;
   config.setMode(mode);
   problem.declare(config);
-  if (config.remapMode()) {
+  if (config.aleMode()) declareAleKeys(config);
+  if (config.remaps()) {
     config.addReal(
         "remap.beta", 2.0, "-",
         "limiter parameter of the volume fractions (1: Barth-Jespersen, 2: compressive)");
@@ -233,6 +255,26 @@ void initializeState(const ProblemSetup& setup, State& state) {
   Kokkos::deep_copy(state.m_ck, m_k_host);
   Kokkos::deep_copy(state.e_ck, e_k_host);
   uploadMaterials(setup.materials, state);
+}
+
+RelaxationControls readRelaxationControls(const Config& config) {
+  RelaxationControls controls;
+  controls.rule =
+      config.text("ale.rule") == "initial" ? RelaxationRule::Initial : RelaxationRule::Winslow;
+  controls.weight = config.real("ale.weight");
+  controls.max_move = config.real("ale.max_move");
+  controls.quality_floor = config.real("ale.quality_floor");
+  if (!(controls.weight >= 0.0 && controls.weight <= 1.0)) {
+    throw ConfigError("ale.weight must be in [0, 1]");
+  }
+  if (!(controls.max_move > 0.0 && controls.max_move <= 1.0)) {
+    throw ConfigError("ale.max_move must be in (0, 1]");
+  }
+  if (!(controls.quality_floor >= 0.0 && controls.quality_floor < 1.0)) {
+    throw ConfigError("ale.quality_floor must be in [0, 1)");
+  }
+  if (!(config.integer("ale.every") >= 1)) throw ConfigError("ale.every must be at least 1");
+  return controls;
 }
 
 RemapControls readRemapControls(const Config& config, State& state) {

@@ -9,6 +9,7 @@
 #include "decomposition.hpp"
 #include "input/config.hpp"
 #include "lagrange_step.hpp"
+#include "mesh_relaxation.hpp"
 #include "parallel.hpp"
 #include "problem.hpp"
 #include "remap_step.hpp"
@@ -34,6 +35,9 @@ ProblemSetup setUpProblem(const Problem& problem, const Config& config, const st
 // Uploads a problem's initial cells into an allocated state: m = rho v (v from
 // the same geometry the kernels use), E = e + |V|^2 / 2, and the material table.
 void initializeState(const ProblemSetup& setup, State& state);
+
+// The ale.* keys but ale.every; throws ConfigError for impossible values.
+RelaxationControls readRelaxationControls(const Config& config);
 
 // The remap.* keys; the trace threshold goes to the state (the mixture rules read it).
 RemapControls readRemapControls(const Config& config, State& state);

@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "diagnostics.hpp"
+#include "kernels/mesh_quality.hpp"
 #include "parallel.hpp"
 #include "setup.hpp"
 #include "stop_signals.hpp"
@@ -80,16 +81,21 @@ Simulation::Simulation(const RunOptions& options, const Problem& problem)
   setup_seconds_.decompose = phase.seconds();
   phase.reset();
   Mesh& mesh = setup_.mesh;
-  // (in remap mode the remap step gives the corner arrays their memory)
-  state_ = allocateState(mesh, numerics_.gather == Gather::Atomics, !config.remapMode());
+  // (in remap and ALE modes the remap step gives the corner arrays their memory)
+  state_ = allocateState(mesh, numerics_.gather == Gather::Atomics, !config.remaps());
   collectively([&] { initializeState(setup_, state_); });
   setup_.cells = InitialCells();  // uploaded: its host copy goes (72 bytes a cell of taylor)
 
   lagrange_ = std::make_unique<LagrangeStep>(mesh, state_, numerics_, timers_, halo_.get());
-  if (config.remapMode()) {
+  if (config.remaps()) {
     RemapControls controls = readRemapControls(config, state_);
     controls.kernels = numerics_.kernels;
     remap_ = makeRemapStep(mesh, state_, controls, timers_, halo_.get(), options.problem);
+  }
+  if (config.aleMode()) {  // (before a restart moves the nodes: the initial mesh)
+    relaxation_ = std::make_unique<MeshRelaxation>(
+        mesh, readRelaxationControls(config), config.integer("ale.every"), timers_, halo_.get());
+  } else if (remap_) {
     lagrange_->remapFollowsEveryStep();
   }
   limit_ = lagrange_->computeGeometry();
@@ -126,6 +132,7 @@ Simulation::Simulation(const RunOptions& options, const Problem& problem)
     loop_.initial = computeTotals(mesh, state_);
   }
   totals_ = loop_.initial;
+  measureMeshQuality();
   start_ = loop_;
   pending_outputs_ = snapshotTimesAhead(options.output_times, loop_.time, numerics_.dt_min);
   refuseAFirstStepBelowTheFloor();
@@ -229,15 +236,19 @@ std::string Simulation::stopReason(const TimeStepChoice& choice) const {
 
 void Simulation::advance(const TimeStepChoice& choice) {
   const long next = loop_.step + 1;
+  // remap mode remaps after every step; ALE mode every ale.every steps
+  const bool remaps = remap_ && (!relaxation_ || relaxation_->due(next));
+  if (relaxation_) lagrange_->remapFollowsNextStep(remaps);
   // Lagrangian phase: predictor and corrector (docs/method.md §A5), with the next
   // step's time-step candidates
   limit_ = lagrange_->advance(choice.dt, next);
   if (limit_.val < 0.0) throw RunFailure(describeInvalidCell(limit_, next, "end of step"));
   RemapBoundaryFlux crossed;
-  if (remap_) {
-    // remap onto the initial mesh (docs/method.md §A9): densities, gradients, swept
-    // regions, fluxes, energy fix; then the time step of the remapped state
-    crossed = remap_->apply();
+  if (remaps) {
+    // remap onto the initial mesh (docs/method.md §A9), or in ALE mode onto the
+    // relaxed one (§6): densities, gradients, swept regions, fluxes, energy
+    // fix; then the time step of the remapped state
+    crossed = relaxation_ ? remap_->apply(relaxation_->target()) : remap_->apply();
     limit_ = lagrange_->computeGeometry();
     if (limit_.val < 0.0) {
       remap_->restoreStartOfStep();
@@ -264,7 +275,13 @@ void Simulation::diagnose(double dt, const RemapBoundaryFlux& crossed) {
   loop_.work += dt * boundary.power + crossed.v[4];
   loop_.mass_in += crossed.v[0];
   totals_ = computeTotals(setup_.mesh, state_);
+  measureMeshQuality();
   if (problem_.probe) loop_.probe.emplace_back(loop_.time, problem_.probe(setup_.mesh, state_));
+}
+
+void Simulation::measureMeshQuality() {
+  mesh_quality_ = parallel::min(smallestScaledJacobian(setup_.mesh, setup_.mesh.x_n));
+  loop_.lowest_mesh_quality = std::min(loop_.lowest_mesh_quality, mesh_quality_);
 }
 
 // The largest energy the run held or received (a body at rest driven by a

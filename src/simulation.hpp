@@ -13,6 +13,7 @@
 
 #include "checkpoint.hpp"
 #include "lagrange_step.hpp"
+#include "mesh_relaxation.hpp"
 #include "problem.hpp"
 #include "remap_step.hpp"
 #include "run.hpp"
@@ -71,6 +72,9 @@ class Simulation {
   const LoopState& loopState() const { return loop_; }
   const LoopState& startState() const { return start_; }  // at the first step of this process
   const Totals& totals() const { return totals_; }
+  // The smallest scaled Jacobian of the present mesh's cells
+  // (kernels/mesh_quality.hpp); the run's lowest is loopState()'s.
+  double meshQuality() const { return mesh_quality_; }
   bool failed() const { return !failure_.empty(); }
   const std::string& failure() const { return failure_; }
   // The signal that stopped the run at the end of a step (installStopSignals),
@@ -99,8 +103,9 @@ class Simulation {
   void refuseAFirstStepBelowTheFloor() const;
   // One step of Fig. 2; throws RunFailure with the start-of-step state restored.
   void advance(const TimeStepChoice& choice);
-  // Boundary impulse and work of the step, the totals, the probe.
+  // Boundary impulse and work of the step, the totals, the mesh quality, the probe.
   void diagnose(double dt, const RemapBoundaryFlux& crossed);
+  void measureMeshQuality();
   double energyScale() const;  // of the drifts
 
   const RunOptions& options_;
@@ -113,7 +118,8 @@ class Simulation {
   mutable PhaseTimers timers_;
   std::unique_ptr<LagrangeStep> lagrange_;
   std::unique_ptr<RemapStep> remap_;
-  StepLimit limit_;  // the next step's stable time step
+  std::unique_ptr<MeshRelaxation> relaxation_;  // ALE mode
+  StepLimit limit_;                             // the next step's stable time step
   LoopState loop_, start_;
   bool restarted_ = false;
   SetupSeconds setup_seconds_;
@@ -121,6 +127,7 @@ class Simulation {
   long loop_reductions_ = 0;
   std::vector<double> pending_outputs_;  // snapshot times still ahead, sorted, each once
   Totals totals_;
+  double mesh_quality_ = 1.0;
   std::string failure_;
   int stopped_by_ = 0;
   double wall_seconds_ = 0.0;

@@ -107,6 +107,13 @@ void writeConservation(JsonWriter& json, const Simulation& simulation, const Run
       .value("internal_energy", simulation.totals().internal)
       .value("boundary_work", simulation.loopState().work)
       .endObject();
+  json.beginObject("mesh_quality")
+      .value("min_scaled_jacobian", simulation.meshQuality())
+      .value("lowest_min_scaled_jacobian", simulation.loopState().lowest_mesh_quality)
+      .value("note",
+             "smallest corner scaled Jacobian of the cells (1: right angles, <= 0: a flat or "
+             "inverted corner): of the final mesh, and the lowest of any step")
+      .endObject();
 }
 
 void writeInterfaces(JsonWriter& json, const Simulation& simulation, const RunResult& result) {

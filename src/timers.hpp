@@ -18,6 +18,7 @@ enum class Phase : int {
   NodalSolve,
   CellUpdate,
   Remap,
+  Relaxation,
   Halo,
   Diagnostics,
   Output,
@@ -25,8 +26,8 @@ enum class Phase : int {
 };
 
 inline const char* phaseName(Phase phase) {
-  static const char* names[] = {"geometry", "corners", "nodal_solve", "cell_update",
-                                "remap",    "halo",    "diagnostics", "output"};
+  static const char* names[] = {"geometry",   "corners", "nodal_solve", "cell_update", "remap",
+                                "relaxation", "halo",    "diagnostics", "output"};
   return names[int(phase)];
 }
 

@@ -78,11 +78,21 @@ class Config {
   bool boolean(const std::string& key) const;
   const std::string& text(const std::string& key) const;
 
-  // The run mode the keys were declared for ("lagrange" or "remap"): problems
-  // choose their domain and defaults by it.
-  void setMode(const std::string& mode) { mode_ = mode; }
+  // The run mode the keys were declared for ("lagrange", "remap" or "ale")
+  // and the problem set-up it starts from, lagrange's or remap's: problems
+  // choose their domain and defaults by the set-up. ALE mode starts from the
+  // lagrange set-up, or from remap's where the problem has no other
+  // (useRemapSetup, refuseLagrangeMode).
+  void setMode(const std::string& mode) {
+    mode_ = mode;
+    remap_setup_ = mode == "remap";
+  }
+  void useRemapSetup() { remap_setup_ = true; }
   const std::string& mode() const { return mode_; }
-  bool remapMode() const { return mode_ == "remap"; }
+  bool remapSetup() const { return remap_setup_; }
+  // Whether the run remaps (remap and ALE modes).
+  bool remaps() const { return mode_ == "remap" || mode_ == "ale"; }
+  bool aleMode() const { return mode_ == "ale"; }
 
   // All keys in order, for --print-config and summary.json.
   const std::map<std::string, Param>& params() const { return params_; }
@@ -93,6 +103,7 @@ class Config {
   void add(Param param);
   std::map<std::string, Param> params_;
   std::string mode_ = "lagrange";
+  bool remap_setup_ = false;
 };
 
 }  // namespace lagremap
