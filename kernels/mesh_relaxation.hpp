@@ -1,8 +1,8 @@
-// Mesh relaxation of ALE mode (docs/method.md §6): from the Lagrangian node
+// Mesh relaxation of ALE mode (docs/method.md §8): from the Lagrangian node
 // positions x_L, each node's target x_T = (1 - w) x_L + w x_R, where x_R is
 //  - winslow: the node's equipotential (Winslow) position, one Jacobi sweep of
 //      sum_ij a_ij x_{xi_i xi_j} = 0,  a = adj(g),  g_ij = x_{xi_i} . x_{xi_j},
-//    on the node's logical 3x3x3 stencil (docs/method.md §6.1): an affine
+//    on the node's logical 3x3x3 stencil (docs/method.md §8.1): an affine
 //    image of a uniform block is its own relaxed mesh, so the mesh follows
 //    any uniform deformation of the material and is moved only where the
 //    deformation bends it;
@@ -49,36 +49,46 @@ KOKKOS_INLINE_FUNCTION int stencilIndex(int a, int b, int c) {
   return (a + 1) + 3 * (b + 1) + 9 * (c + 1);
 }
 
-// What the stencil gather reads of the mesh (kernels capture these Views,
-// not the whole Mesh).
-struct NodeCells {
-  IndexView offsets, corners;  // Mesh::node_corner_offsets, node_corners
-  CellNodesView cell_nodes;
-  explicit NodeCells(const Mesh& mesh)
-      : offsets(mesh.node_corner_offsets),
-        corners(mesh.node_corners),
-        cell_nodes(mesh.cell_nodes) {}
-};
+// Each node's logical stencil as node ids, (node, stencil index), -1 where
+// there is none: face and edge neighbours only (Winslow reads no body
+// diagonal), and the node itself. Built once (nodeStencils).
+using NodeStencilView = DeviceView<Index* [27]>;
 
-// The stencil of node n from its corners: the cells round the node, each
-// placed by the node's logical position in it (every cell of a block has
-// the same orientation). Face and edge neighbours only (Winslow reads no
-// body diagonal).
-KOKKOS_INLINE_FUNCTION NodeStencil gatherNodeStencil(const NodeCells& mesh, const Vec3View& x_n,
-                                                     Index n) {
+// The stencils of every node from their corners: the cells round a node,
+// each placed by the node's logical position in it (every cell of a block
+// has the same orientation).
+static inline NodeStencilView nodeStencils(const Mesh& mesh) {
+  NodeStencilView stencils("lagremap::ale::node_stencils", mesh.n_nodes);
+  const auto offsets = mesh.node_corner_offsets;
+  const auto corners = mesh.node_corners;
+  const auto cell_nodes = mesh.cell_nodes;
+  Kokkos::parallel_for(
+      "lagremap::ale::node_stencils", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_nodes),
+      KOKKOS_LAMBDA(const Index n) {
+        for (int s = 0; s < 27; ++s) stencils(n, s) = -1;
+        for (Index q = offsets(n); q < offsets(n + 1); ++q) {
+          const Index c = corners(q) / 8;
+          const int p = corners(q) % 8;
+          const int i = hexLogicalI(p), j = hexLogicalJ(p), k = hexLogicalK(p);
+          for (int r = 0; r < 8; ++r) {
+            const int a = hexLogicalI(r) - i, b = hexLogicalJ(r) - j, cc = hexLogicalK(r) - k;
+            if (a != 0 && b != 0 && cc != 0) continue;
+            stencils(n, stencilIndex(a, b, cc)) = cell_nodes(c, r);
+          }
+        }
+      });
+  return stencils;
+}
+
+// The positions of node n's stencil.
+KOKKOS_INLINE_FUNCTION NodeStencil gatherNodeStencil(const NodeStencilView& stencils,
+                                                     const Vec3View& x_n, Index n) {
   NodeStencil stencil;
-  for (Index q = mesh.offsets(n); q < mesh.offsets(n + 1); ++q) {
-    const Index corner = mesh.corners(q);
-    const Index c = corner / 8;
-    const int p = corner % 8;
-    const int i = hexLogicalI(p), j = hexLogicalJ(p), k = hexLogicalK(p);
-    for (int r = 0; r < 8; ++r) {
-      const int a = hexLogicalI(r) - i, b = hexLogicalJ(r) - j, cc = hexLogicalK(r) - k;
-      if (a != 0 && b != 0 && cc != 0) continue;
-      const int s = stencilIndex(a, b, cc);
-      stencil.x[s] = loadVec3(x_n, mesh.cell_nodes(c, r));
-      stencil.present |= 1u << s;
-    }
+  for (int s = 0; s < 27; ++s) {
+    const Index node = stencils(n, s);
+    if (node < 0) continue;
+    stencil.x[s] = loadVec3(x_n, node);
+    stencil.present |= 1u << s;
   }
   return stencil;
 }
@@ -95,7 +105,7 @@ KOKKOS_INLINE_FUNCTION int stencilAlong2(int d, int sign_d, int e, int sign_e) {
 }
 
 // One Jacobi sweep of the Winslow equations at the stencil's centre
-// (docs/method.md §6.1), over the logical directions with neighbours on
+// (docs/method.md §8.1), over the logical directions with neighbours on
 // both sides: with x_{xi_d} = (x_{+d} - x_{-d}) / 2, g = (x_{xi_d} . x_{xi_e}),
 // a = adj(g),
 //   x = [sum_d a_dd (x_{+d} + x_{-d}) + 2 sum_{d<e} a_de X_de] / (2 sum_d a_dd),
@@ -169,7 +179,8 @@ KOKKOS_INLINE_FUNCTION double shortestEdge(const NodeStencil& s) {
 // of their cells, kernels/hex.hpp).
 static inline DeviceView<int*> nodeFreedom(const Mesh& mesh) {
   DeviceView<int*> freedom("lagremap::ale::node_freedom", mesh.n_nodes);
-  const NodeCells cells(mesh);
+  const auto offsets = mesh.node_corner_offsets;
+  const auto corners = mesh.node_corners;
   const auto neighbors = mesh.cell_neighbors;
   const auto face_side = mesh.cell_face_side;
   const auto side_kind = mesh.side_kind;
@@ -177,9 +188,9 @@ static inline DeviceView<int*> nodeFreedom(const Mesh& mesh) {
       "lagremap::ale::node_freedom", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_nodes),
       KOKKOS_LAMBDA(const Index n) {
         int free = kNodeRelaxed;
-        for (Index q = cells.offsets(n); q < cells.offsets(n + 1); ++q) {
-          const Index c = cells.corners(q) / 8;
-          const int p = cells.corners(q) % 8;
+        for (Index q = offsets(n); q < offsets(n + 1); ++q) {
+          const Index c = corners(q) / 8;
+          const int p = corners(q) % 8;
           const int faces[3] = {hexLogicalI(p), 2 + hexLogicalJ(p), 4 + hexLogicalK(p)};
           for (int f : faces) {
             const int side = face_side(c, f);
@@ -193,10 +204,10 @@ static inline DeviceView<int*> nodeFreedom(const Mesh& mesh) {
 }
 
 // The targets of the owned nodes (ghost nodes: the caller exchanges them).
-static inline void relaxedTargets(const Mesh& mesh, const Vec3View& x_lagrange,
-                                  const Vec3View& x_initial, const DeviceView<int*>& freedom,
+static inline void relaxedTargets(const Mesh& mesh, const NodeStencilView& stencils,
+                                  const Vec3View& x_lagrange, const Vec3View& x_initial,
+                                  const DeviceView<int*>& freedom,
                                   const RelaxationControls& controls, const Vec3View& x_target) {
-  const NodeCells cells(mesh);
   const auto owned = mesh.node_owned;
   const auto projector_id = mesh.node_projector_id;
   const auto projectors = mesh.projectors;
@@ -209,7 +220,7 @@ static inline void relaxedTargets(const Mesh& mesh, const Vec3View& x_lagrange,
         if (ctl.rule == RelaxationRule::Initial) {
           // every node, boundaries included, towards where it started
           const Vec3 blend = (1.0 - ctl.weight) * x_l + ctl.weight * loadVec3(x_initial, n);
-          const NodeStencil s = gatherNodeStencil(cells, x_lagrange, n);
+          const NodeStencil s = gatherNodeStencil(stencils, x_lagrange, n);
           const Vec3 move = blend - x_l;
           const double reach = ctl.max_move * shortestEdge(s), length = norm(move);
           storeVec3(x_target, n, length > reach ? x_l + (reach / length) * move : blend);
@@ -219,7 +230,7 @@ static inline void relaxedTargets(const Mesh& mesh, const Vec3View& x_lagrange,
           storeVec3(x_target, n, x_l);
           return;
         }
-        const NodeStencil s = gatherNodeStencil(cells, x_lagrange, n);
+        const NodeStencil s = gatherNodeStencil(stencils, x_lagrange, n);
         Vec3 move = ctl.weight * (winslowPosition(s) - x_l);
         const int projector = projector_id(n);
         if (projector >= 0) move = loadSym(projectors, projector) * move;
@@ -229,31 +240,64 @@ static inline void relaxedTargets(const Mesh& mesh, const Vec3View& x_lagrange,
       });
 }
 
-// One pass of the quality guard (docs/method.md §6.2), in two sweeps so that no
+// One pass of the quality guard (docs/method.md §8.2), in two sweeps so that no
 // thread reads a target another one rewrites:
 // 1. every cell whose target shape is worse than min(its Lagrangian quality,
-//    floor) is marked; returns how many owned cells were (the caller sums
-//    over ranks);
-static inline long markWorsenedCells(const Mesh& mesh, const Vec3View& x_lagrange,
-                                     const Vec3View& x_target, double quality_floor,
-                                     const DeviceView<int*>& worsened) {
+//    floor) is marked; returns how many owned cells were, and the smallest
+//    target quality of the owned cells (after a pass that marks none: the
+//    new mesh's, the step's mesh quality); the caller reduces over ranks.
+struct GuardTally {
+  long worsened = 0;
+  double lowest = 1.0;  // (a cell's scaled Jacobian is at most 1)
+  // (a sum of the counts, a minimum of the qualities: Kokkos::Sum's join)
+  KOKKOS_INLINE_FUNCTION GuardTally& operator+=(const GuardTally& other) {
+    worsened += other.worsened;
+    lowest = other.lowest < lowest ? other.lowest : lowest;
+    return *this;
+  }
+  KOKKOS_INLINE_FUNCTION void operator+=(const volatile GuardTally& other) volatile {
+    worsened += other.worsened;
+    lowest = other.lowest < lowest ? other.lowest : lowest;
+  }
+};
+
+}  // namespace lagremap
+
+namespace Kokkos {
+template <>
+struct reduction_identity<lagremap::GuardTally> {
+  KOKKOS_FORCEINLINE_FUNCTION static lagremap::GuardTally sum() { return {}; }
+};
+}  // namespace Kokkos
+
+namespace lagremap {
+
+static inline GuardTally markWorsenedCells(const Mesh& mesh, const Vec3View& x_lagrange,
+                                           const Vec3View& x_target, double quality_floor,
+                                           const DeviceView<int*>& worsened) {
   const auto cell_nodes = mesh.cell_nodes;
   const auto owned = mesh.cell_owned;
-  long count = 0;
+  GuardTally tally;
   Kokkos::parallel_reduce(
       "lagremap::ale::mark_worsened_cells", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
-      KOKKOS_LAMBDA(const Index c, long& marked) {
-        Vec3 x_l[8], x_t[8];
-        gatherCellNodes(cell_nodes, x_lagrange, c, x_l);
+      KOKKOS_LAMBDA(const Index c, GuardTally& sum) {
+        Vec3 x_t[8];
         gatherCellNodes(cell_nodes, x_target, c, x_t);
-        const double lagrangian = cellScaledJacobian(x_l);
-        const double bound = lagrangian < quality_floor ? lagrangian : quality_floor;
-        const bool worse = cellScaledJacobian(x_t) < bound;
+        const double relaxed = cellScaledJacobian(x_t);
+        bool worse = false;
+        if (relaxed < quality_floor) {  // (only then can the Lagrangian bound matter)
+          Vec3 x_l[8];
+          gatherCellNodes(cell_nodes, x_lagrange, c, x_l);
+          const double lagrangian = cellScaledJacobian(x_l);
+          worse = relaxed < (lagrangian < quality_floor ? lagrangian : quality_floor);
+        }
         worsened(c) = worse ? 1 : 0;
-        if (worse && owned(c)) ++marked;
+        if (!owned(c)) return;
+        if (worse) ++sum.worsened;
+        sum.lowest = relaxed < sum.lowest ? relaxed : sum.lowest;
       },
-      count);
-  return count;
+      Kokkos::Sum<GuardTally>(tally));
+  return tally;
 }
 
 // 2. an owned node of a marked cell goes back to x_L (the caller then
@@ -261,14 +305,15 @@ static inline long markWorsenedCells(const Mesh& mesh, const Vec3View& x_lagrang
 static inline void holdNodesOfWorsenedCells(const Mesh& mesh, const Vec3View& x_lagrange,
                                             const DeviceView<int*>& worsened,
                                             const Vec3View& x_target) {
-  const NodeCells cells(mesh);
+  const auto offsets = mesh.node_corner_offsets;
+  const auto corners = mesh.node_corners;
   const auto owned = mesh.node_owned;
   Kokkos::parallel_for(
       "lagremap::ale::hold_nodes_of_worsened_cells",
       Kokkos::RangePolicy<ExecSpace>(0, mesh.n_nodes), KOKKOS_LAMBDA(const Index n) {
         if (!owned(n)) return;
-        for (Index q = cells.offsets(n); q < cells.offsets(n + 1); ++q) {
-          if (worsened(cells.corners(q) / 8)) {
+        for (Index q = offsets(n); q < offsets(n + 1); ++q) {
+          if (worsened(corners(q) / 8)) {
             storeVec3(x_target, n, loadVec3(x_lagrange, n));
             return;
           }

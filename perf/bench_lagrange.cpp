@@ -34,6 +34,7 @@
 #include "src/floating_point.hpp"
 #include "src/kokkos_session.hpp"
 #include "src/lagrange_step.hpp"
+#include "src/mesh_relaxation.hpp"
 #include "src/problem.hpp"
 #include "src/remap_step.hpp"
 #include "src/run.hpp"
@@ -367,6 +368,48 @@ void BM_LagrangeRemapStep(benchmark::State& state) {
   setCellRate(state, "cell_steps_per_second");
 }
 
+// ALE mode's relaxation alone (docs/method.md §8): Winslow targets of the
+// warmed-up Lagrangian mesh, the move limit and the quality guard's passes.
+void BM_MeshRelaxation(benchmark::State& state) {
+  Bench& b = *g_bench;
+  b.restore();
+  MeshRelaxation relaxation(b.mesh(), RelaxationControls(), 1, b.timers());
+  for (auto _ : state) {
+    Kokkos::Timer timer;
+    const Vec3View& target = relaxation.target();
+    Kokkos::fence();
+    state.SetIterationTime(timer.seconds());
+    benchmark::DoNotOptimize(target.data());
+  }
+  setCellRate(state, "cells_per_second");
+}
+
+// A whole ALE step as the driver takes it: advance, relaxation, remap onto
+// the relaxed mesh, geometry.
+void BM_AleStep(benchmark::State& state) {
+  Bench& b = *g_bench;
+  b.restore();
+  RemapStep remap(b.mesh(), b.state(), RemapControls(), b.timers());
+  LagrangeStep lagrange(b.mesh(), b.state(), b.numerics(), b.timers());
+  MeshRelaxation relaxation(b.mesh(), RelaxationControls(), 1, b.timers());
+  lagrange.remapFollowsNextStep(true);  // as the driver does, every step
+  const double dt = b.dtBench();
+  long step = 0;
+  for (auto _ : state) {
+    Kokkos::Timer timer;
+    lagrange.advance(dt, ++step);
+    remap.apply(relaxation.target());
+    const StepLimit limit = lagrange.computeGeometry();
+    Kokkos::fence();
+    state.SetIterationTime(timer.seconds());
+    if (limit.val < dt) {
+      state.SkipWithError("the fixed benchmark dt exceeds the stable dt");
+      break;
+    }
+  }
+  setCellRate(state, "cell_steps_per_second");
+}
+
 void registerBenchmarks() {
   auto manual = [](benchmark::internal::Benchmark* bench) {
     bench->UseManualTime()->Unit(benchmark::kMillisecond);
@@ -390,6 +433,8 @@ void registerBenchmarks() {
   manual(benchmark::RegisterBenchmark("BM_SweptFaces", BM_SweptFaces));
   manual(benchmark::RegisterBenchmark("BM_RemapFluxes", BM_RemapFluxes));
   manual(benchmark::RegisterBenchmark("BM_LagrangeRemapStep/order2", BM_LagrangeRemapStep));
+  manual(benchmark::RegisterBenchmark("BM_MeshRelaxation", BM_MeshRelaxation));
+  manual(benchmark::RegisterBenchmark("BM_AleStep/order2", BM_AleStep));
 }
 
 }  // namespace

@@ -10,6 +10,7 @@ MeshRelaxation::MeshRelaxation(const Mesh& mesh, const RelaxationControls& contr
   x_initial_ = Vec3View("lagremap::ale::x_initial", mesh.n_nodes);
   Kokkos::deep_copy(x_initial_, mesh.x_n);
   x_target_ = Vec3View("lagremap::ale::x_target", mesh.n_nodes);
+  node_stencils_ = nodeStencils(mesh);
   node_freedom_ = nodeFreedom(mesh);
   worsened_cells_ = DeviceView<int*>("lagremap::ale::worsened_cells", mesh.n_cells);
   if (halo_) target_fields_ = {fieldRef("x_target", x_target_)};
@@ -17,7 +18,7 @@ MeshRelaxation::MeshRelaxation(const Mesh& mesh, const RelaxationControls& contr
 
 const Vec3View& MeshRelaxation::target() {
   auto scope = timers_.scope(Phase::Relaxation);
-  relaxedTargets(mesh_, mesh_.x_n, x_initial_, node_freedom_, controls_, x_target_);
+  relaxedTargets(mesh_, node_stencils_, mesh_.x_n, x_initial_, node_freedom_, controls_, x_target_);
   exchangeGhostTargets();
   // the quality guard: each pass sends the nodes of the cells the targets
   // worsen back to their Lagrangian positions, until none is left (a mesh
@@ -25,9 +26,10 @@ const Vec3View& MeshRelaxation::target() {
   guard_passes_ = 0;
   for (;;) {
     ++guard_passes_;
-    const long worsened = long(parallel::sum(double(
-        markWorsenedCells(mesh_, mesh_.x_n, x_target_, controls_.quality_floor, worsened_cells_))));
-    if (worsened == 0) break;
+    const GuardTally tally =
+        markWorsenedCells(mesh_, mesh_.x_n, x_target_, controls_.quality_floor, worsened_cells_);
+    target_quality_ = parallel::min(tally.lowest);
+    if (parallel::sum(double(tally.worsened)) == 0.0) break;
     holdNodesOfWorsenedCells(mesh_, mesh_.x_n, worsened_cells_, x_target_);
     exchangeGhostTargets();
   }

@@ -1,4 +1,4 @@
-// The relaxation phase of ALE mode (docs/method.md §6) as the time loop calls
+// The relaxation phase of ALE mode (docs/method.md §8) as the time loop calls
 // it: every ale.every steps, after the Lagrangian step, the target mesh the
 // remap then carries the state onto
 //   rule's positions (Winslow or initial) -> limited moves -> ghost nodes
@@ -30,6 +30,9 @@ class MeshRelaxation {
   const RelaxationControls& controls() const { return controls_; }
   // Quality-guard passes of the last target() (1: no cell was worsened).
   int guardPasses() const { return guard_passes_; }
+  // The smallest scaled Jacobian of the last target() over every rank's
+  // cells (kernels/mesh_quality.hpp): the mesh quality after its remap.
+  double targetQuality() const { return target_quality_; }
 
  private:
   void exchangeGhostTargets();
@@ -40,9 +43,11 @@ class MeshRelaxation {
   PhaseTimers& timers_;
   const Halo* halo_;
   Vec3View x_initial_, x_target_;
+  NodeStencilView node_stencils_;
   DeviceView<int*> node_freedom_, worsened_cells_;
   std::vector<FieldRef> target_fields_;  // the halo's list, made once (src/fields.hpp)
   int guard_passes_ = 0;
+  double target_quality_ = 1.0;
 };
 
 }  // namespace lagremap

@@ -13,12 +13,12 @@ namespace lagremap {
 
 namespace {
 
-// ALE mode's keys (docs/method.md §6, docs/running.md).
+// ALE mode's keys (docs/method.md §8, docs/running.md).
 void declareAleKeys(Config& config) {
   config.addChoice("ale.rule", "winslow", {"winslow", "initial"},
                    "target mesh of the relaxation: winslow (equipotential smoothing of the "
                    "Lagrangian mesh, boundaries kept) or initial (the initial mesh: remap mode's "
-                   "target at ale.weight 1); docs/method.md §6");
+                   "target at ale.weight 1); docs/method.md §8");
   config.addReal("ale.weight", 1.0, "-",
                  "fraction of the way from the Lagrangian position to the rule's (0: the "
                  "Lagrangian mesh, no remap: lagrange mode)");

@@ -132,7 +132,7 @@ Simulation::Simulation(const RunOptions& options, const Problem& problem)
     loop_.initial = computeTotals(mesh, state_);
   }
   totals_ = loop_.initial;
-  measureMeshQuality();
+  noteMeshQuality(measuredMeshQuality());
   start_ = loop_;
   pending_outputs_ = snapshotTimesAhead(options.output_times, loop_.time, numerics_.dt_min);
   refuseAFirstStepBelowTheFloor();
@@ -246,7 +246,7 @@ void Simulation::advance(const TimeStepChoice& choice) {
   RemapBoundaryFlux crossed;
   if (remaps) {
     // remap onto the initial mesh (docs/method.md §A9), or in ALE mode onto the
-    // relaxed one (§6): densities, gradients, swept regions, fluxes, energy
+    // relaxed one (§8): densities, gradients, swept regions, fluxes, energy
     // fix; then the time step of the remapped state
     crossed = relaxation_ ? remap_->apply(relaxation_->target()) : remap_->apply();
     limit_ = lagrange_->computeGeometry();
@@ -265,23 +265,31 @@ void Simulation::advance(const TimeStepChoice& choice) {
     loop_.time = pending_outputs_.front();
     pending_outputs_.erase(pending_outputs_.begin());
   }
-  diagnose(choice.dt, crossed);
+  diagnose(choice.dt, crossed, remaps);
 }
 
-void Simulation::diagnose(double dt, const RemapBoundaryFlux& crossed) {
+void Simulation::diagnose(double dt, const RemapBoundaryFlux& crossed, bool remapped) {
   auto scope = timers_.scope(Phase::Diagnostics);
   const BoundaryPower boundary = computeBoundaryPower(setup_.mesh, state_);
   loop_.impulse += dt * boundary.force + Vec3{crossed.v[1], crossed.v[2], crossed.v[3]};
   loop_.work += dt * boundary.power + crossed.v[4];
   loop_.mass_in += crossed.v[0];
   totals_ = computeTotals(setup_.mesh, state_);
-  measureMeshQuality();
+  if (remapped && relaxation_) {
+    noteMeshQuality(relaxation_->targetQuality());  // (the guard's last pass measured it)
+  } else if (!remapped) {
+    noteMeshQuality(measuredMeshQuality());
+  }  // (remap mode: the initial mesh again, the quality the set-up measured)
   if (problem_.probe) loop_.probe.emplace_back(loop_.time, problem_.probe(setup_.mesh, state_));
 }
 
-void Simulation::measureMeshQuality() {
-  mesh_quality_ = parallel::min(smallestScaledJacobian(setup_.mesh, setup_.mesh.x_n));
-  loop_.lowest_mesh_quality = std::min(loop_.lowest_mesh_quality, mesh_quality_);
+double Simulation::measuredMeshQuality() const {
+  return parallel::min(smallestScaledJacobian(setup_.mesh, setup_.mesh.x_n));
+}
+
+void Simulation::noteMeshQuality(double quality) {
+  mesh_quality_ = quality;
+  loop_.lowest_mesh_quality = std::min(loop_.lowest_mesh_quality, quality);
 }
 
 // The largest energy the run held or received (a body at rest driven by a

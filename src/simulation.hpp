@@ -103,9 +103,13 @@ class Simulation {
   void refuseAFirstStepBelowTheFloor() const;
   // One step of Fig. 2; throws RunFailure with the start-of-step state restored.
   void advance(const TimeStepChoice& choice);
-  // Boundary impulse and work of the step, the totals, the mesh quality, the probe.
-  void diagnose(double dt, const RemapBoundaryFlux& crossed);
-  void measureMeshQuality();
+  // Boundary impulse and work of the step, the totals, the mesh quality, the
+  // probe; `remapped`: the step ended with a remap.
+  void diagnose(double dt, const RemapBoundaryFlux& crossed, bool remapped);
+  // The smallest scaled Jacobian of the present mesh (every rank's cells),
+  // and its record as the present and the run's lowest.
+  double measuredMeshQuality() const;
+  void noteMeshQuality(double quality);
   double energyScale() const;  // of the drifts
 
   const RunOptions& options_;

@@ -16,6 +16,7 @@ void writeRunAndSpeed(JsonWriter& json, const Simulation& simulation, const RunR
   const Mesh& mesh = simulation.mesh();
   json.value("problem", simulation.options().problem)
       .value("mode", simulation.options().mode)
+      .value("setup", config.remapSetup() ? "remap" : "lagrange")
       .value("order", simulation.numerics().order)
       .value("gather", config.text("numerics.gather"))
       .value("kernels", simulation.numerics().kernels == KernelForm::Staged ? "staged" : "fused")

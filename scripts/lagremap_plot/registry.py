@@ -11,6 +11,7 @@ from .cells import plot_slice_fields
 from .curves import plot_beam_tip, plot_pile_wall_stress, plot_sod_profiles, plot_wilkins_profiles
 from .fields import maps_apply, plot_density_snapshots, plot_field_maps, plot_fields_vs_lagrange
 from .history import plot_history
+from .mesh import not_remap, plot_mesh
 from .radial import plot_radial
 from .readers import Run
 from .shapes import plot_rod, plot_shell, plot_taylor, plot_taylor_outline
@@ -36,10 +37,16 @@ PROBLEM_PLOTS: Dict[str, List[Plot]] = {
     "wilkins": [Plot("wilkins_profiles.png", "wilkins_profile.csv", plot_wilkins_profiles)],
     "pile": [Plot("pile_wall_stress.png", "pile_wall_stress.csv", plot_pile_wall_stress)],
     "taylor": [Plot("taylor.png", "taylor_mesh_z0.csv", plot_taylor),
-               Plot("taylor_outline.png", "fields.xmf", plot_taylor_outline)],
-    "shell": [Plot("shell.png", "shell_mesh_z0.csv", plot_shell)],
+               Plot("taylor_outline.png", "fields.xmf", plot_taylor_outline),
+               Plot("mesh.png", "taylor_mesh_z0.csv",
+                    partial(plot_mesh, source="taylor_mesh_z0.csv"), not_remap)],
+    "shell": [Plot("shell.png", "shell_mesh_z0.csv", plot_shell),
+              Plot("mesh.png", "shell_mesh_z0.csv",
+                   partial(plot_mesh, source="shell_mesh_z0.csv"), not_remap)],
     "beam": [Plot("beam_tip.png", "beam_tip.csv", plot_beam_tip)],
-    "rod": [Plot("rod.png", "rod_plane_z0.csv", plot_rod)],
+    "rod": [Plot("rod.png", "rod_plane_z0.csv", plot_rod),
+            Plot("mesh.png", "rod_plane_z0.csv",
+                 partial(plot_mesh, source="rod_plane_z0.csv"), not_remap)],
 }
 
 # Plots drawn for any problem, as long as the run wrote their input: radial
@@ -50,6 +57,7 @@ GENERIC_PLOTS: List[Plot] = [
     Plot("radial_density.png", "radial.csv", partial(plot_radial, field="rho")),
     Plot("radial_pressure.png", "radial.csv", partial(plot_radial, field="p")),
     Plot("slice_fields.png", "slice_z.csv", plot_slice_fields),
+    Plot("mesh.png", "slice_z.csv", partial(plot_mesh, source="slice_z.csv"), not_remap),
     Plot("fields_map.png", "fields.xmf", plot_field_maps, maps_apply),
     Plot("fields_vs_lagrange.png", "fields.xmf", plot_fields_vs_lagrange, maps_apply),
     Plot("density_snapshots.png", "fields.xmf", plot_density_snapshots, maps_apply),

@@ -1,0 +1,59 @@
+"""The final mesh of a run whose mesh moves (lagrange and ALE modes): the
+cells of a plane drawn with their edges and coloured by their scaled
+Jacobian, the mesh-quality measure the run reports (docs/method.md §8.4)."""
+
+import numpy as np
+import matplotlib.pyplot as plt
+
+from .cells import CORNER_COLUMNS, slice_polygons
+from .errors import InputError
+from .figure import LABELS, run_title, save
+from .readers import Run
+from matplotlib.collections import PolyCollection
+
+
+def quad_scaled_jacobian(polys: np.ndarray) -> np.ndarray:
+    """Smallest corner scaled Jacobian of each quadrilateral of an (n, 4, 2)
+    array: at corner k, (e1 x e2) / (|e1| |e2|) with e1 to the next corner
+    and e2 to the previous one; 1 for right angles, <= 0 for a flat or
+    inverted corner."""
+    nxt = np.roll(polys, -1, axis=1) - polys
+    prv = np.roll(polys, 1, axis=1) - polys
+    cross = nxt[..., 0] * prv[..., 1] - nxt[..., 1] * prv[..., 0]
+    lengths = np.linalg.norm(nxt, axis=2) * np.linalg.norm(prv, axis=2)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        corner = np.where(lengths > 0, cross / lengths, 0.0)
+    # the quads' orientation (counter-clockwise or not) is the writer's
+    sign = np.sign(np.median(corner.min(axis=1)))
+    return (sign if sign != 0 else 1.0) * corner.min(axis=1)
+
+
+def not_remap(run: Run) -> bool:
+    return run.mode != "remap"
+
+
+def plot_mesh(run: Run, out_path: str, source: str) -> str:
+    """The cells of `source` (a CSV of corner quadrilaterals) at t_end, edges
+    drawn, each filled by its scaled Jacobian."""
+    cells = run.table(source, CORNER_COLUMNS)
+    polys = slice_polygons(cells, run.path(source))
+    if polys is None:
+        raise InputError(f"{source}: no corner columns to draw the mesh from")
+    quality = quad_scaled_jacobian(polys)
+    span = np.ptp(polys.reshape(-1, 2), axis=0)
+    width = 11.0
+    height = max(3.0, min(9.0, width * span[1] / max(span[0], 1e-300)))
+    fig, ax = plt.subplots(figsize=(width, height))
+    art = PolyCollection(polys, array=quality, cmap="magma", edgecolor="black",
+                         linewidth=0.15)
+    art.set_clim(min(0.0, quality.min()), 1.0)
+    ax.add_collection(art)
+    fig.colorbar(art, ax=ax, label="scaled Jacobian of the cell (in this plane)", shrink=0.8)
+    ax.autoscale_view()
+    ax.set_aspect("equal")
+    ax.set_xlabel(LABELS["x"])
+    ax.set_ylabel(LABELS["y"])
+    ax.set_title(f"Mesh at t_end, smallest scaled Jacobian {quality.min():.3f} in this plane")
+    fig.suptitle(run_title(run, "Final mesh"))
+    fig.tight_layout()
+    return save(fig, out_path)
