@@ -38,13 +38,7 @@ struct RelaxationControls {
 // velocity projector (none: anywhere).
 enum NodeFreedom : int { kNodeHeld = 0, kNodeRelaxed = 1 };
 
-// The 27 nodes of a node's logical stencil, offset (a, b, c) in {-1, 0, 1}^3
-// at index (a + 1) + 3 (b + 1) + 9 (c + 1); `present` bit i: node i exists.
-struct NodeStencil {
-  Vec3 x[27];
-  unsigned present = 0;
-};
-
+// Stencil index of logical offset (a, b, c) in {-1, 0, 1}^3 from a node.
 KOKKOS_INLINE_FUNCTION int stencilIndex(int a, int b, int c) {
   return (a + 1) + 3 * (b + 1) + 9 * (c + 1);
 }
@@ -80,18 +74,15 @@ static inline NodeStencilView nodeStencils(const Mesh& mesh) {
   return stencils;
 }
 
-// The positions of node n's stencil.
-KOKKOS_INLINE_FUNCTION NodeStencil gatherNodeStencil(const NodeStencilView& stencils,
-                                                     const Vec3View& x_n, Index n) {
-  NodeStencil stencil;
-  for (int s = 0; s < 27; ++s) {
-    const Index node = stencils(n, s);
-    if (node < 0) continue;
-    stencil.x[s] = loadVec3(x_n, node);
-    stencil.present |= 1u << s;
-  }
-  return stencil;
-}
+// Node n's stencil as the kernels read it: the neighbours' positions loaded
+// when used, not held (a GPU thread keeps no 27-position array).
+struct NodeStencil {
+  const NodeStencilView& ids;
+  const Vec3View& x_n;
+  Index n;
+  KOKKOS_INLINE_FUNCTION bool has(int s) const { return ids(n, s) >= 0; }
+  KOKKOS_INLINE_FUNCTION Vec3 x(int s) const { return loadVec3(x_n, ids(n, s)); }
+};
 
 // Offset of logical direction d (0, 1, 2), sign +1 or -1, as a stencil index.
 KOKKOS_INLINE_FUNCTION int stencilAlong(int d, int sign) {
@@ -112,17 +103,16 @@ KOKKOS_INLINE_FUNCTION int stencilAlong2(int d, int sign_d, int e, int sign_e) {
 //   X_de = (x_{+d+e} - x_{+d-e} - x_{-d+e} + x_{-d-e}) / 4.
 // No such direction, or a degenerate metric: the centre itself.
 KOKKOS_INLINE_FUNCTION Vec3 winslowPosition(const NodeStencil& s) {
-  const Vec3 centre = s.x[stencilIndex(0, 0, 0)];
+  const Vec3 centre = s.x(stencilIndex(0, 0, 0));
   int dirs[3];
   int m = 0;
   for (int d = 0; d < 3; ++d) {
-    const unsigned both = (1u << stencilAlong(d, 1)) | (1u << stencilAlong(d, -1));
-    if ((s.present & both) == both) dirs[m++] = d;
+    if (s.has(stencilAlong(d, 1)) && s.has(stencilAlong(d, -1))) dirs[m++] = d;
   }
   if (m == 0) return centre;
   Vec3 tangent[3];
   for (int a = 0; a < m; ++a) {
-    tangent[a] = 0.5 * (s.x[stencilAlong(dirs[a], 1)] - s.x[stencilAlong(dirs[a], -1)]);
+    tangent[a] = 0.5 * (s.x(stencilAlong(dirs[a], 1)) - s.x(stencilAlong(dirs[a], -1)));
   }
   double g[3][3];
   for (int a = 0; a < m; ++a)
@@ -146,13 +136,13 @@ KOKKOS_INLINE_FUNCTION Vec3 winslowPosition(const NodeStencil& s) {
   double weight = 0.0;
   for (int a = 0; a < m; ++a) {
     const int d = dirs[a];
-    sum += adj[a][a] * (s.x[stencilAlong(d, 1)] + s.x[stencilAlong(d, -1)]);
+    sum += adj[a][a] * (s.x(stencilAlong(d, 1)) + s.x(stencilAlong(d, -1)));
     weight += 2.0 * adj[a][a];
     for (int b = a + 1; b < m; ++b) {
       const int e = dirs[b];
       const Vec3 cross_difference =
-          (s.x[stencilAlong2(d, 1, e, 1)] - s.x[stencilAlong2(d, 1, e, -1)]) -
-          (s.x[stencilAlong2(d, -1, e, 1)] - s.x[stencilAlong2(d, -1, e, -1)]);
+          (s.x(stencilAlong2(d, 1, e, 1)) - s.x(stencilAlong2(d, 1, e, -1))) -
+          (s.x(stencilAlong2(d, -1, e, 1)) - s.x(stencilAlong2(d, -1, e, -1)));
       sum += 0.5 * adj[a][b] * cross_difference;
     }
   }
@@ -161,13 +151,13 @@ KOKKOS_INLINE_FUNCTION Vec3 winslowPosition(const NodeStencil& s) {
 
 // The shortest edge from the stencil's centre to a face neighbour.
 KOKKOS_INLINE_FUNCTION double shortestEdge(const NodeStencil& s) {
-  const Vec3 centre = s.x[stencilIndex(0, 0, 0)];
+  const Vec3 centre = s.x(stencilIndex(0, 0, 0));
   double shortest = 1e300;
   for (int d = 0; d < 3; ++d) {
     for (int sign = -1; sign <= 1; sign += 2) {
       const int i = stencilAlong(d, sign);
-      if (!(s.present & (1u << i))) continue;
-      const double length = norm(s.x[i] - centre);
+      if (!s.has(i)) continue;
+      const double length = norm(s.x(i) - centre);
       shortest = length < shortest ? length : shortest;
     }
   }
@@ -220,7 +210,7 @@ static inline void relaxedTargets(const Mesh& mesh, const NodeStencilView& stenc
         if (ctl.rule == RelaxationRule::Initial) {
           // every node, boundaries included, towards where it started
           const Vec3 blend = (1.0 - ctl.weight) * x_l + ctl.weight * loadVec3(x_initial, n);
-          const NodeStencil s = gatherNodeStencil(stencils, x_lagrange, n);
+          const NodeStencil s{stencils, x_lagrange, n};
           const Vec3 move = blend - x_l;
           const double reach = ctl.max_move * shortestEdge(s), length = norm(move);
           storeVec3(x_target, n, length > reach ? x_l + (reach / length) * move : blend);
@@ -230,7 +220,7 @@ static inline void relaxedTargets(const Mesh& mesh, const NodeStencilView& stenc
           storeVec3(x_target, n, x_l);
           return;
         }
-        const NodeStencil s = gatherNodeStencil(stencils, x_lagrange, n);
+        const NodeStencil s{stencils, x_lagrange, n};
         Vec3 move = ctl.weight * (winslowPosition(s) - x_l);
         const int projector = projector_id(n);
         if (projector >= 0) move = loadSym(projectors, projector) * move;
