@@ -46,29 +46,36 @@ KOKKOS_INLINE_FUNCTION double cornerScaledJacobian(const Vec3 x[8], int p) {
   return lengths > 0.0 ? dot(cross(e1, e2), e3) / lengths : 0.0;
 }
 
+// One corner's scaled Jacobian from its three edges and their lengths.
+KOKKOS_FORCEINLINE_FUNCTION double scaledJacobianOfEdges(const Vec3& e1, double l1, const Vec3& e2,
+                                                         double l2, const Vec3& e3, double l3) {
+  const double lengths = l1 * l2 * l3;
+  return lengths > 0.0 ? dot(cross(e1, e2), e3) / lengths : 0.0;
+}
+
 // The smallest of the 8 corners' scaled Jacobians of one cell, the same
 // numbers as cornerScaledJacobian with each of the 12 edges and its length
-// computed once: edge_d[a] runs along logical direction d, to its + end,
-// at the other two directions' positions a (bit 0 the lower direction's).
+// computed once: x_a runs along xi at the (eta, zeta) position a (bit 0
+// eta, bit 1 zeta), y_a along eta at (xi, zeta), z_a along zeta at (xi,
+// eta), each to its + end; corner (i, j, k) takes x_{j+2k}, y_{i+2k},
+// z_{i+2j}. Written out corner by corner: no indexed edge table in memory.
 KOKKOS_INLINE_FUNCTION double cellScaledJacobian(const Vec3 x[8]) {
-  Vec3 edge[3][4];
-  double length[3][4];
-  for (int a = 0; a < 4; ++a) {
-    const int lo = a & 1, hi = a >> 1;
-    edge[0][a] = x[hexNodeAt(1, lo, hi)] - x[hexNodeAt(0, lo, hi)];
-    edge[1][a] = x[hexNodeAt(lo, 1, hi)] - x[hexNodeAt(lo, 0, hi)];
-    edge[2][a] = x[hexNodeAt(lo, hi, 1)] - x[hexNodeAt(lo, hi, 0)];
-    for (int d = 0; d < 3; ++d) length[d][a] = norm(edge[d][a]);
-  }
+  const Vec3 x0 = x[1] - x[0], x1 = x[2] - x[3], x2 = x[5] - x[4], x3 = x[6] - x[7];
+  const Vec3 y0 = x[3] - x[0], y1 = x[2] - x[1], y2 = x[7] - x[4], y3 = x[6] - x[5];
+  const Vec3 z0 = x[4] - x[0], z1 = x[5] - x[1], z2 = x[7] - x[3], z3 = x[6] - x[2];
+  const double lx0 = norm(x0), lx1 = norm(x1), lx2 = norm(x2), lx3 = norm(x3);
+  const double ly0 = norm(y0), ly1 = norm(y1), ly2 = norm(y2), ly3 = norm(y3);
+  const double lz0 = norm(z0), lz1 = norm(z1), lz2 = norm(z2), lz3 = norm(z3);
+  const double corner[8] = {scaledJacobianOfEdges(x0, lx0, y0, ly0, z0, lz0),
+                            scaledJacobianOfEdges(x0, lx0, y1, ly1, z1, lz1),
+                            scaledJacobianOfEdges(x1, lx1, y1, ly1, z3, lz3),
+                            scaledJacobianOfEdges(x1, lx1, y0, ly0, z2, lz2),
+                            scaledJacobianOfEdges(x2, lx2, y2, ly2, z0, lz0),
+                            scaledJacobianOfEdges(x2, lx2, y3, ly3, z1, lz1),
+                            scaledJacobianOfEdges(x3, lx3, y3, ly3, z3, lz3),
+                            scaledJacobianOfEdges(x3, lx3, y2, ly2, z2, lz2)};
   double smallest = 1.0;
-  for (int p = 0; p < 8; ++p) {
-    const int i = hexLogicalI(p), j = hexLogicalJ(p), k = hexLogicalK(p);
-    const int a = j + 2 * k, b = i + 2 * k, c = i + 2 * j;
-    const double lengths = length[0][a] * length[1][b] * length[2][c];
-    const double corner =
-        lengths > 0.0 ? dot(cross(edge[0][a], edge[1][b]), edge[2][c]) / lengths : 0.0;
-    smallest = corner < smallest ? corner : smallest;
-  }
+  for (int p = 0; p < 8; ++p) smallest = corner[p] < smallest ? corner[p] : smallest;
   return smallest;
 }
 
