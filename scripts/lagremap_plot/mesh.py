@@ -41,8 +41,11 @@ def plot_mesh(run: Run, out_path: str, source: str) -> str:
         raise InputError(f"{source}: no corner columns to draw the mesh from")
     quality = quad_scaled_jacobian(polys)
     span = np.ptp(polys.reshape(-1, 2), axis=0)
-    width = 11.0
-    height = max(3.0, min(9.0, width * span[1] / max(span[0], 1e-300)))
+    aspect = span[1] / max(span[0], 1e-300)  # (the axes keep x and y to scale)
+    if aspect <= 1.0:
+        width, height = 11.0, max(3.5, min(9.0, 9.0 * aspect + 1.5))
+    else:
+        width, height = max(7.5, min(11.0, 8.0 / aspect + 3.0)), 9.0
     fig, ax = plt.subplots(figsize=(width, height))
     art = PolyCollection(polys, array=quality, cmap="magma", edgecolor="black",
                          linewidth=0.15)
@@ -53,7 +56,7 @@ def plot_mesh(run: Run, out_path: str, source: str) -> str:
     ax.set_aspect("equal")
     ax.set_xlabel(LABELS["x"])
     ax.set_ylabel(LABELS["y"])
-    ax.set_title(f"Mesh at t_end, smallest scaled Jacobian {quality.min():.3f} in this plane")
+    ax.set_title(f"smallest scaled Jacobian in this plane: {quality.min():.3f}")
     fig.suptitle(run_title(run, "Final mesh"))
     fig.tight_layout()
     return save(fig, out_path)
