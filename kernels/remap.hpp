@@ -105,6 +105,10 @@ struct RemapControls {
   // sharing the face; true, the upwind cell's limiter stencil (it and its
   // face neighbours).
   bool stencil_parcel_bound = true;
+  // Each parcel's volume fraction kept in [0, 1] (remap.parcel_fractions,
+  // docs/method.md §5.3): a lever near the upwind cell's reach extrapolates
+  // its reconstruction past the vertex values the limiter bounds.
+  bool bounded_parcel_fractions = false;
   bool kinetic_energy_fix = true;  // false: kinetic energy from the remapped momentum (tests)
   KernelForm kernels = defaultKernelForm();  // numerics.kernels
 };
@@ -562,6 +566,19 @@ KOKKOS_FORCEINLINE_FUNCTION double boundedSpecificFlux(const RemapLayout& layout
   return energy_flux < lowest ? lowest : (energy_flux > highest ? highest : energy_flux);
 }
 
+// The parcel guards of a remap (RemapControls): the range of a parcel's
+// specific energy (stencil or face) and the bound of its volume fractions.
+struct ParcelGuards {
+  bool stencil_range = true;
+  bool bounded_fractions = false;
+};
+
+// A parcel's volume-fraction flux with its fraction alpha_flux / dvol in [0, 1].
+KOKKOS_FORCEINLINE_FUNCTION double boundedFractionFlux(double alpha_flux, double dvol) {
+  const double lo = dvol < 0.0 ? dvol : 0.0, hi = dvol < 0.0 ? 0.0 : dvol;
+  return alpha_flux < lo ? lo : (alpha_flux > hi ? hi : alpha_flux);
+}
+
 // Upwind flux of one interior face-side region of volume dvol and lever
 // M - x_up dV (docs/method.md §A9, §5.3-5.6): each material's volume second
 // order, its mass and energy by the product rule on the upwind alpha^k,
@@ -573,7 +590,7 @@ KOKKOS_FORCEINLINE_FUNCTION double boundedSpecificFlux(const RemapLayout& layout
 template <class Integral, class Range>
 KOKKOS_FORCEINLINE_FUNCTION void fluxInteriorRegion(
     const RemapLayout& layout, const RemapFields& fields, const CellFacesView& neighbors, Index c,
-    Index nb, Index up, double dvol, const Vec3& lever, bool limit, bool stencil_bound,
+    Index nb, Index up, double dvol, const Vec3& lever, bool limit, ParcelGuards guards,
     Integral& integral, Range& range) {
   const auto& q = fields.density;
   const auto& w = fields.primitive;
@@ -587,7 +604,8 @@ KOKKOS_FORCEINLINE_FUNCTION void fluxInteriorRegion(
   double mass_flux_total = 0.0;
   for (int m = 0; m < layout.n_materials; ++m) {
     const int a = layout.alpha(m);
-    const double alpha_flux = dvol * q(up, a) + slope(a);
+    double alpha_flux = dvol * q(up, a) + slope(a);
+    if (limit && guards.bounded_fractions) alpha_flux = boundedFractionFlux(alpha_flux, dvol);
     integral[a] += alpha_flux;
     const double alpha_up = q(up, a);
     const double mass_up = q(up, layout.mass(m));
@@ -601,8 +619,8 @@ KOKKOS_FORCEINLINE_FUNCTION void fluxInteriorRegion(
     double energy_flux = mass_flux * e_up + (pure_up ? mass_up * slope(layout.energy(m)) : 0.0);
     if (limit) {
       energy_flux =
-          boundedSpecificFlux(layout, fields, neighbors, stencil_bound, up, up == c ? nb : c, m,
-                              layout.energy(m), mass_flux, e_up, energy_flux);
+          boundedSpecificFlux(layout, fields, neighbors, guards.stencil_range, up, up == c ? nb : c,
+                              m, layout.energy(m), mass_flux, e_up, energy_flux);
     }
     integral[layout.energy(m)] += energy_flux;
     mass_flux_total += mass_flux;
@@ -619,8 +637,8 @@ KOKKOS_FORCEINLINE_FUNCTION void fluxInteriorRegion(
     double plastic_flux = mass_flux * eps_up + (pure_up ? mass_up * slope(plastic) : 0.0);
     if (limit) {
       plastic_flux =
-          boundedSpecificFlux(layout, fields, neighbors, stencil_bound, up, up == c ? nb : c, m,
-                              plastic, mass_flux, eps_up, plastic_flux);
+          boundedSpecificFlux(layout, fields, neighbors, guards.stencil_range, up, up == c ? nb : c,
+                              m, plastic, mass_flux, eps_up, plastic_flux);
     }
     integral[plastic] += plastic_flux;
   }
@@ -771,7 +789,7 @@ template <class Integral, class Range, class Array>
 KOKKOS_FORCEINLINE_FUNCTION void remapCell(const State& s, const CellFacesView& neighbors,
                                            bool book_crossing, const RemapLayout& layout,
                                            const RemapFields& fields, const SweptFaces& swept,
-                                           bool limit, bool stencil_bound, double alpha_floor,
+                                           bool limit, ParcelGuards guards, double alpha_floor,
                                            bool kinetic_energy_fix, Index c, Integral& integral,
                                            Range& range, Array& alpha, Array& mass, Array& internal,
                                            RemapBoundaryFlux& crossed) {
@@ -801,8 +819,8 @@ KOKKOS_FORCEINLINE_FUNCTION void remapCell(const State& s, const CellFacesView& 
       const Index up = side == kGainedSide ? nb : c;
       Vec3 lever = loadVec3(swept.moment_r, r) - dvol * loadVec3(s.x_c, up);
       if (limit) lever = limitedLever(lever, fields.reach(up), dvol);
-      fluxInteriorRegion(layout, fields, neighbors, c, nb, up, dvol, lever, limit, stencil_bound,
-                         integral, range);
+      fluxInteriorRegion(layout, fields, neighbors, c, nb, up, dvol, lever, limit, guards, integral,
+                         range);
     }
   }
   cleanUpMaterials(layout, s.materials, integral, volume, range, alpha_floor, alpha, mass,
@@ -823,7 +841,8 @@ static inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state
   const auto owned = mesh.cell_owned;
   const auto s = state;
   const bool limit = controls.limit;
-  const bool stencil_bound = controls.stencil_parcel_bound;
+  const detail::ParcelGuards guards{controls.stencil_parcel_bound,
+                                    controls.bounded_parcel_fractions};
   const double alpha_floor = controls.alpha_floor;
   const bool kinetic_energy_fix = controls.kinetic_energy_fix;
   const auto policy = Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells);
@@ -836,7 +855,7 @@ static inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state
             double integral[kMaxRemapVariables];
             detail::SourceRangeOf<detail::SourceBounds> range;
             double alpha[kMaxMaterials], mass[kMaxMaterials], internal[kMaxMaterials];
-            detail::remapCell(s, neighbors, owned(c), layout, fields, swept, limit, stencil_bound,
+            detail::remapCell(s, neighbors, owned(c), layout, fields, swept, limit, guards,
                               alpha_floor, kinetic_energy_fix, c, integral, range, alpha, mass,
                               internal, crossed);
           },
@@ -867,9 +886,9 @@ static inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state
         RowOf integral_row{integral, c}, alpha{s.alpha_ck, c}, mass{s.m_ck, c}, internal{s.e_ck, c};
         detail::SourceRangeOf<detail::SourceBoundsRow> range{{source_range, c}};
         RemapBoundaryFlux unused;
-        detail::remapCell(s, neighbors, false, layout, fields, swept, limit, stencil_bound,
-                          alpha_floor, kinetic_energy_fix, c, integral_row, range, alpha, mass,
-                          internal, unused);
+        detail::remapCell(s, neighbors, false, layout, fields, swept, limit, guards, alpha_floor,
+                          kinetic_energy_fix, c, integral_row, range, alpha, mass, internal,
+                          unused);
       });
   return boundary;
 }

@@ -55,6 +55,12 @@ Config declareConfig(const Problem& problem, const std::string& mode) {
                      "stencil (the upwind cell and its face neighbours, the range its limiter "
                      "keeps the reconstruction in: second order on a smooth oblique flow) or face "
                      "(the two cells sharing the face); docs/method.md §5.2");
+    config.addChoice(
+        "remap.parcel_fractions", config.aleMode() ? "bounded" : "free", {"bounded", "free"},
+        "a swept parcel's volume fractions: bounded (kept in [0, 1], the default in ALE mode, "
+        "whose relaxed faces sweep across trace cells) or free (the linear reconstruction's "
+        "at the parcel, clipped per cell after the sweep; remap mode's default, in which its "
+        "results were verified); docs/method.md §5.3");
     config.addReal("remap.alpha_trace", 1e-3, "-",
                    "volume fraction below which a material of a mixed cell is a trace: carried, "
                    "but left out of the cell's stress and sound speed");
@@ -283,6 +289,7 @@ RemapControls readRemapControls(const Config& config, State& state) {
   controls.alpha_floor = config.real("remap.alpha_floor");
   controls.reconstruct = config.integer("numerics.order") >= 2;  // (--order 1: first order)
   controls.stencil_parcel_bound = config.text("remap.parcel_bound") == "stencil";
+  controls.bounded_parcel_fractions = config.text("remap.parcel_fractions") == "bounded";
   state.alpha_trace = config.real("remap.alpha_trace");
   state.closure = config.text("mixture.closure") == "equal_strain" ? MixtureClosure::EqualStrain
                                                                    : MixtureClosure::Relaxation;
