@@ -7,6 +7,7 @@ import matplotlib.pyplot as plt
 
 from .cells import CORNER_COLUMNS, slice_polygons
 from .errors import InputError
+from .fields import final_snapshot
 from .figure import LABELS, run_title, save
 from .readers import Run
 from matplotlib.collections import PolyCollection
@@ -32,6 +33,15 @@ def not_remap(run: Run) -> bool:
     return run.mode != "remap"
 
 
+# Problems whose own CSV holds the plane to draw (the symmetry plane z = 0);
+# the others' mesh is drawn from the final snapshot's mid layer.
+CSV_MESH_PROBLEMS = ("taylor", "shell", "rod")
+
+
+def snapshot_mesh_applies(run: Run) -> bool:
+    return not_remap(run) and run.problem not in CSV_MESH_PROBLEMS
+
+
 def plot_mesh(run: Run, out_path: str, source: str) -> str:
     """The cells of `source` (a CSV of corner quadrilaterals) at t_end, edges
     drawn, each filled by its scaled Jacobian."""
@@ -39,6 +49,15 @@ def plot_mesh(run: Run, out_path: str, source: str) -> str:
     polys = slice_polygons(cells, run.path(source))
     if polys is None:
         raise InputError(f"{source}: no corner columns to draw the mesh from")
+    return draw_mesh(run, out_path, polys)
+
+
+def plot_snapshot_mesh(run: Run, out_path: str) -> str:
+    """The final snapshot's mid layer of cells, as plot_mesh draws a CSV's."""
+    return draw_mesh(run, out_path, final_snapshot(run).layer_polygons())
+
+
+def draw_mesh(run: Run, out_path: str, polys: np.ndarray) -> str:
     quality = quad_scaled_jacobian(polys)
     span = np.ptp(polys.reshape(-1, 2), axis=0)
     aspect = span[1] / max(span[0], 1e-300)  # (the axes keep x and y to scale)

@@ -11,7 +11,7 @@ from .cells import plot_slice_fields
 from .curves import plot_beam_tip, plot_pile_wall_stress, plot_sod_profiles, plot_wilkins_profiles
 from .fields import maps_apply, plot_density_snapshots, plot_field_maps, plot_fields_vs_lagrange
 from .history import plot_history
-from .mesh import not_remap, plot_mesh
+from .mesh import not_remap, plot_mesh, plot_snapshot_mesh, snapshot_mesh_applies
 from .radial import plot_radial
 from .readers import Run
 from .shapes import plot_rod, plot_shell, plot_taylor, plot_taylor_outline
@@ -57,7 +57,7 @@ GENERIC_PLOTS: List[Plot] = [
     Plot("radial_density.png", "radial.csv", partial(plot_radial, field="rho")),
     Plot("radial_pressure.png", "radial.csv", partial(plot_radial, field="p")),
     Plot("slice_fields.png", "slice_z.csv", plot_slice_fields),
-    Plot("mesh.png", "slice_z.csv", partial(plot_mesh, source="slice_z.csv"), not_remap),
+    Plot("mesh.png", "fields.xmf", plot_snapshot_mesh, snapshot_mesh_applies),
     Plot("fields_map.png", "fields.xmf", plot_field_maps, maps_apply),
     Plot("fields_vs_lagrange.png", "fields.xmf", plot_fields_vs_lagrange, maps_apply),
     Plot("density_snapshots.png", "fields.xmf", plot_density_snapshots, maps_apply),
