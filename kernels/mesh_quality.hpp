@@ -58,25 +58,44 @@ KOKKOS_FORCEINLINE_FUNCTION double scaledJacobianOfEdges(const Vec3& e1, double 
 // computed once: x_a runs along xi at the (eta, zeta) position a (bit 0
 // eta, bit 1 zeta), y_a along eta at (xi, zeta), z_a along zeta at (xi,
 // eta), each to its + end; corner (i, j, k) takes x_{j+2k}, y_{i+2k},
-// z_{i+2j}. Written out corner by corner: no indexed edge table in memory.
-KOKKOS_INLINE_FUNCTION double cellScaledJacobian(const Vec3 x[8]) {
-  const Vec3 x0 = x[1] - x[0], x1 = x[2] - x[3], x2 = x[5] - x[4], x3 = x[6] - x[7];
-  const Vec3 y0 = x[3] - x[0], y1 = x[2] - x[1], y2 = x[7] - x[4], y3 = x[6] - x[5];
-  const Vec3 z0 = x[4] - x[0], z1 = x[5] - x[1], z2 = x[7] - x[3], z3 = x[6] - x[2];
-  const double lx0 = norm(x0), lx1 = norm(x1), lx2 = norm(x2), lx3 = norm(x3);
-  const double ly0 = norm(y0), ly1 = norm(y1), ly2 = norm(y2), ly3 = norm(y3);
+// z_{i+2j}. The zeta edges serve both layers of corners, the others one
+// layer each, taken in turn (fewer values live at once: a GPU thread's
+// registers). `node(p)`: the position of local node p.
+template <class Nodes>
+KOKKOS_INLINE_FUNCTION double cellScaledJacobianOf(const Nodes& node) {
+  const Vec3 z0 = node(4) - node(0), z1 = node(5) - node(1);
+  const Vec3 z2 = node(7) - node(3), z3 = node(6) - node(2);
   const double lz0 = norm(z0), lz1 = norm(z1), lz2 = norm(z2), lz3 = norm(z3);
-  const double corner[8] = {scaledJacobianOfEdges(x0, lx0, y0, ly0, z0, lz0),
-                            scaledJacobianOfEdges(x0, lx0, y1, ly1, z1, lz1),
-                            scaledJacobianOfEdges(x1, lx1, y1, ly1, z3, lz3),
-                            scaledJacobianOfEdges(x1, lx1, y0, ly0, z2, lz2),
-                            scaledJacobianOfEdges(x2, lx2, y2, ly2, z0, lz0),
-                            scaledJacobianOfEdges(x2, lx2, y3, ly3, z1, lz1),
-                            scaledJacobianOfEdges(x3, lx3, y3, ly3, z3, lz3),
-                            scaledJacobianOfEdges(x3, lx3, y2, ly2, z2, lz2)};
   double smallest = 1.0;
-  for (int p = 0; p < 8; ++p) smallest = corner[p] < smallest ? corner[p] : smallest;
+  const auto keep = [&](double corner) { smallest = corner < smallest ? corner : smallest; };
+  {  // the bottom layer's corners, k = 0
+    const Vec3 x0 = node(1) - node(0), x1 = node(2) - node(3);
+    const Vec3 y0 = node(3) - node(0), y1 = node(2) - node(1);
+    const double lx0 = norm(x0), lx1 = norm(x1), ly0 = norm(y0), ly1 = norm(y1);
+    keep(scaledJacobianOfEdges(x0, lx0, y0, ly0, z0, lz0));
+    keep(scaledJacobianOfEdges(x0, lx0, y1, ly1, z1, lz1));
+    keep(scaledJacobianOfEdges(x1, lx1, y1, ly1, z3, lz3));
+    keep(scaledJacobianOfEdges(x1, lx1, y0, ly0, z2, lz2));
+  }
+  {  // the top layer's, k = 1
+    const Vec3 x2 = node(5) - node(4), x3 = node(6) - node(7);
+    const Vec3 y2 = node(7) - node(4), y3 = node(6) - node(5);
+    const double lx2 = norm(x2), lx3 = norm(x3), ly2 = norm(y2), ly3 = norm(y3);
+    keep(scaledJacobianOfEdges(x2, lx2, y2, ly2, z0, lz0));
+    keep(scaledJacobianOfEdges(x2, lx2, y3, ly3, z1, lz1));
+    keep(scaledJacobianOfEdges(x3, lx3, y3, ly3, z3, lz3));
+    keep(scaledJacobianOfEdges(x3, lx3, y2, ly2, z2, lz2));
+  }
   return smallest;
+}
+
+// The same of a cell whose nodes are held in an array.
+struct NodesOfArray8 {
+  const Vec3* x;
+  KOKKOS_INLINE_FUNCTION Vec3 operator()(int p) const { return x[p]; }
+};
+KOKKOS_INLINE_FUNCTION double cellScaledJacobian(const Vec3 x[8]) {
+  return cellScaledJacobianOf(NodesOfArray8{x});
 }
 
 // The smallest scaled Jacobian of this rank's owned cells at node positions
@@ -90,9 +109,7 @@ static inline double smallestScaledJacobian(const Mesh& mesh, const Vec3View& x_
       Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
       KOKKOS_LAMBDA(const Index c, double& lowest) {
         if (!owned(c)) return;
-        Vec3 x[8];
-        gatherCellNodes(cell_nodes, x_n, c, x);
-        const double quality = cellScaledJacobian(x);
+        const double quality = cellScaledJacobianOf(NodesOfCell{cell_nodes, x_n, c});
         lowest = quality < lowest ? quality : lowest;
       },
       Kokkos::Min<double>(smallest));

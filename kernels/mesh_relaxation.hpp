@@ -230,23 +230,24 @@ static inline void relaxedTargets(const Mesh& mesh, const NodeStencilView& stenc
       });
 }
 
-// One pass of the quality guard (docs/method.md §8.2), in two sweeps so that no
-// thread reads a target another one rewrites:
-// 1. every cell whose target shape is worse than min(its Lagrangian quality,
-//    floor) is marked; returns how many owned cells were, and the smallest
-//    target quality of the owned cells (after a pass that marks none: the
-//    new mesh's, the step's mesh quality); the caller reduces over ranks.
+// One pass of the quality guard (docs/method.md §8.2), in three sweeps so that
+// no thread reads a target another one rewrites (and each holds one cell's
+// quality sweep at a time: a GPU thread's registers):
+// 1. every cell's target quality; returns how many owned cells are below
+//    the floor and the smallest of the owned cells' (after a pass that
+//    marks none: the new mesh's, the step's mesh quality); the caller
+//    reduces over ranks;
 struct GuardTally {
-  long worsened = 0;
+  long below_floor = 0;
   double lowest = 1.0;  // (a cell's scaled Jacobian is at most 1)
   // (a sum of the counts, a minimum of the qualities: Kokkos::Sum's join)
   KOKKOS_INLINE_FUNCTION GuardTally& operator+=(const GuardTally& other) {
-    worsened += other.worsened;
+    below_floor += other.below_floor;
     lowest = other.lowest < lowest ? other.lowest : lowest;
     return *this;
   }
   KOKKOS_INLINE_FUNCTION void operator+=(const volatile GuardTally& other) volatile {
-    worsened += other.worsened;
+    below_floor += other.below_floor;
     lowest = other.lowest < lowest ? other.lowest : lowest;
   }
 };
@@ -262,35 +263,49 @@ struct reduction_identity<lagremap::GuardTally> {
 
 namespace lagremap {
 
-static inline GuardTally markWorsenedCells(const Mesh& mesh, const Vec3View& x_lagrange,
-                                           const Vec3View& x_target, double quality_floor,
-                                           const DeviceView<int*>& worsened) {
+static inline GuardTally targetCellQualities(const Mesh& mesh, const Vec3View& x_target,
+                                             double quality_floor, const RealView& quality) {
   const auto cell_nodes = mesh.cell_nodes;
   const auto owned = mesh.cell_owned;
   GuardTally tally;
   Kokkos::parallel_reduce(
-      "lagremap::ale::mark_worsened_cells", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
+      "lagremap::ale::target_cell_qualities", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
       KOKKOS_LAMBDA(const Index c, GuardTally& sum) {
-        Vec3 x_t[8];
-        gatherCellNodes(cell_nodes, x_target, c, x_t);
-        const double relaxed = cellScaledJacobian(x_t);
-        bool worse = false;
-        if (relaxed < quality_floor) {  // (only then can the Lagrangian bound matter)
-          Vec3 x_l[8];
-          gatherCellNodes(cell_nodes, x_lagrange, c, x_l);
-          const double lagrangian = cellScaledJacobian(x_l);
-          worse = relaxed < (lagrangian < quality_floor ? lagrangian : quality_floor);
-        }
-        worsened(c) = worse ? 1 : 0;
+        const double relaxed = cellScaledJacobianOf(NodesOfCell{cell_nodes, x_target, c});
+        quality(c) = relaxed;
         if (!owned(c)) return;
-        if (worse) ++sum.worsened;
+        if (relaxed < quality_floor) ++sum.below_floor;
         sum.lowest = relaxed < sum.lowest ? relaxed : sum.lowest;
       },
       Kokkos::Sum<GuardTally>(tally));
   return tally;
 }
 
-// 2. an owned node of a marked cell goes back to x_L (the caller then
+// 2. below the floor, the cells the target makes worse than their Lagrangian
+//    shape or the floor are marked; returns how many owned cells are;
+static inline long markWorsenedCells(const Mesh& mesh, const Vec3View& x_lagrange,
+                                     const RealView& quality, double quality_floor,
+                                     const DeviceView<int*>& worsened) {
+  const auto cell_nodes = mesh.cell_nodes;
+  const auto owned = mesh.cell_owned;
+  long count = 0;
+  Kokkos::parallel_reduce(
+      "lagremap::ale::mark_worsened_cells", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
+      KOKKOS_LAMBDA(const Index c, long& marked) {
+        const double relaxed = quality(c);
+        bool worse = false;
+        if (relaxed < quality_floor) {  // (only then can the Lagrangian bound matter)
+          const double lagrangian = cellScaledJacobianOf(NodesOfCell{cell_nodes, x_lagrange, c});
+          worse = relaxed < (lagrangian < quality_floor ? lagrangian : quality_floor);
+        }
+        worsened(c) = worse ? 1 : 0;
+        if (worse && owned(c)) ++marked;
+      },
+      count);
+  return count;
+}
+
+// 3. an owned node of a marked cell goes back to x_L (the caller then
 //    exchanges the ghost nodes' targets).
 static inline void holdNodesOfWorsenedCells(const Mesh& mesh, const Vec3View& x_lagrange,
                                             const DeviceView<int*>& worsened,

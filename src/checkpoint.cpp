@@ -260,6 +260,11 @@ std::string impossibleNumbers(LoopState loop, double step) {
   return "";
 }
 
+// A root attribute a checkpoint of an older format may lack (`fallback` then).
+double optionalScalar(hid_t file, const char* name, double fallback, const std::string& path) {
+  return H5Aexists(file, name) > 0 ? io::readScalarAttribute(file, name, path) : fallback;
+}
+
 // A small table every rank holds the same copy of (the probe's history):
 // written from rank 0, read by all; every rank computes its checksum.
 void writeTable(hid_t file, const char* name, const std::vector<double>& values, int cols,
@@ -448,15 +453,10 @@ LoopState readCheckpoint(const std::string& path, Mesh& mesh, State& state,
   visitNumbers(loop, step, [&](const char* name, double& value) {
     value = io::readScalarAttribute(file.get(), name, path);
   });
-  // (older checkpoints have none: the restart's own stable dt starts the
-  // record)
-  loop.dt_stable_max = H5Aexists(file.get(), "dt_stable_max") > 0
-                           ? io::readScalarAttribute(file.get(), "dt_stable_max", path)
-                           : 0.0;
-  // (nor this: the restart's own mesh starts it)
-  loop.lowest_mesh_quality = H5Aexists(file.get(), "lowest_mesh_quality") > 0
-                                 ? io::readScalarAttribute(file.get(), "lowest_mesh_quality", path)
-                                 : 1.0;
+  // (older checkpoints have neither: the restart's own stable dt and mesh
+  // start the records)
+  loop.dt_stable_max = optionalScalar(file.get(), "dt_stable_max", 0.0, path);
+  loop.lowest_mesh_quality = optionalScalar(file.get(), "lowest_mesh_quality", 1.0, path);
   const std::string impossible = impossibleNumbers(loop, step);
   if (!impossible.empty()) {
     throw std::runtime_error("checkpoint '" + path + "' holds an impossible " + impossible);

@@ -13,6 +13,7 @@ MeshRelaxation::MeshRelaxation(const Mesh& mesh, const RelaxationControls& contr
   node_stencils_ = nodeStencils(mesh);
   node_freedom_ = nodeFreedom(mesh);
   worsened_cells_ = DeviceView<int*>("lagremap::ale::worsened_cells", mesh.n_cells);
+  target_quality_c_ = RealView("lagremap::ale::target_quality", mesh.n_cells);
   if (halo_) target_fields_ = {fieldRef("x_target", x_target_)};
 }
 
@@ -27,9 +28,12 @@ const Vec3View& MeshRelaxation::target() {
   for (;;) {
     ++guard_passes_;
     const GuardTally tally =
-        markWorsenedCells(mesh_, mesh_.x_n, x_target_, controls_.quality_floor, worsened_cells_);
+        targetCellQualities(mesh_, x_target_, controls_.quality_floor, target_quality_c_);
     target_quality_ = parallel::min(tally.lowest);
-    if (parallel::sum(double(tally.worsened)) == 0.0) break;
+    if (parallel::sum(double(tally.below_floor)) == 0.0) break;  // (none can be worse)
+    const long worsened = markWorsenedCells(mesh_, mesh_.x_n, target_quality_c_,
+                                            controls_.quality_floor, worsened_cells_);
+    if (parallel::sum(double(worsened)) == 0.0) break;
     holdNodesOfWorsenedCells(mesh_, mesh_.x_n, worsened_cells_, x_target_);
     exchangeGhostTargets();
   }

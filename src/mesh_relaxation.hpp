@@ -45,6 +45,7 @@ class MeshRelaxation {
   Vec3View x_initial_, x_target_;
   NodeStencilView node_stencils_;
   DeviceView<int*> node_freedom_, worsened_cells_;
+  RealView target_quality_c_;            // each cell's target scaled Jacobian (the guard's)
   std::vector<FieldRef> target_fields_;  // the halo's list, made once (src/fields.hpp)
   int guard_passes_ = 0;
   double target_quality_ = 1.0;

@@ -190,10 +190,11 @@ TEST(Winslow, TheQualityGuardKeepsEveryCellAboveItsBound) {
                  x_target);
   int passes = 0;
   long marked = 0, first = -1;
-  while (
-      (marked =
-           markWorsenedCells(mesh, mesh.x_n, x_target, controls.quality_floor, worsened).worsened) >
-      0) {
+  RealView quality("quality", mesh.n_cells);
+  for (;;) {
+    targetCellQualities(mesh, x_target, controls.quality_floor, quality);
+    marked = markWorsenedCells(mesh, mesh.x_n, quality, controls.quality_floor, worsened);
+    if (marked == 0) break;
     if (first < 0) first = marked;
     holdNodesOfWorsenedCells(mesh, mesh.x_n, worsened, x_target);
     ASSERT_LT(++passes, 50);
