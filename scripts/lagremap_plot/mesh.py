@@ -34,12 +34,15 @@ def not_remap(run: Run) -> bool:
 
 
 # Problems whose own CSV holds the plane to draw (the symmetry plane z = 0);
-# the others' mesh is drawn from the final snapshot's mid layer.
+# a slab's (one cell thick) mesh is drawn from the final snapshot, and a 3D
+# block's from its slice_z.csv where it writes one (a deformed block's cells
+# near the mid-plane are no plane).
 CSV_MESH_PROBLEMS = ("taylor", "shell", "rod")
 
 
 def snapshot_mesh_applies(run: Run) -> bool:
-    return not_remap(run) and run.problem not in CSV_MESH_PROBLEMS
+    return (not_remap(run) and run.problem not in CSV_MESH_PROBLEMS
+            and run.config_int("mesh.nz") == 1)
 
 
 def plot_mesh(run: Run, out_path: str, source: str) -> str:

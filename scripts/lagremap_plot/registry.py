@@ -58,6 +58,7 @@ GENERIC_PLOTS: List[Plot] = [
     Plot("radial_pressure.png", "radial.csv", partial(plot_radial, field="p")),
     Plot("slice_fields.png", "slice_z.csv", plot_slice_fields),
     Plot("mesh.png", "fields.xmf", plot_snapshot_mesh, snapshot_mesh_applies),
+    Plot("mesh.png", "slice_z.csv", partial(plot_mesh, source="slice_z.csv"), not_remap),
     Plot("fields_map.png", "fields.xmf", plot_field_maps, maps_apply),
     Plot("fields_vs_lagrange.png", "fields.xmf", plot_fields_vs_lagrange, maps_apply),
     Plot("density_snapshots.png", "fields.xmf", plot_density_snapshots, maps_apply),
