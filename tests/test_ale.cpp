@@ -217,33 +217,6 @@ TEST(Winslow, TheQualityGuardKeepsEveryCellAboveItsBound) {
   EXPECT_GT(relaxed_cells, 0);  // (and it did not just hold every node)
 }
 
-// The largest relative difference of two runs' final fields (0: the same bits).
-double largestDifference(const FinalFields& a, const FinalFields& b) {
-  double worst = 0.0;
-  auto compare = [&](const auto& x, const auto& y) {
-    if (x.size() != y.size()) {
-      worst = INFINITY;
-      return;
-    }
-    for (std::size_t i = 0; i < x.size(); ++i) {
-      const double u = x.data()[i], v = y.data()[i];
-      if (u == v) continue;
-      worst = std::max(worst, std::abs(u - v) / std::max(std::abs(u), std::abs(v)));
-    }
-  };
-  compare(a.rho, b.rho);
-  compare(a.p, b.p);
-  compare(a.e, b.e);
-  compare(a.v, b.v);
-  compare(a.S, b.S);
-  compare(a.alpha, b.alpha);
-  compare(a.m_k, b.m_k);
-  compare(a.e_k, b.e_k);
-  compare(a.eps_k, b.eps_k);
-  compare(a.mesh.x_n, b.mesh.x_n);
-  return worst;
-}
-
 TEST(AleMode, ATargetAtTheInitialMeshIsRemapModeBitForBit) {
   // advection starts from the remap set-up in both modes: a solid moving
   // through the gas, mixed cells, stresses and plastic strain remapped
@@ -256,7 +229,7 @@ TEST(AleMode, ATargetAtTheInitialMeshIsRemapModeBitForBit) {
   ASSERT_FALSE(remap.failed) << remap.failure;
   ASSERT_FALSE(ale.failed) << ale.failure;
   EXPECT_EQ(ale.steps, remap.steps);
-  EXPECT_EQ(largestDifference(ale.fields, remap.fields), 0.0);
+  EXPECT_EQ(testing::maxRelativeDifference(ale.fields, remap.fields), 0.0);
 }
 
 TEST(AleMode, NoRelaxationIsLagrangeModeBitForBit) {
@@ -267,7 +240,7 @@ TEST(AleMode, NoRelaxationIsLagrangeModeBitForBit) {
   const RunResult ale = runProblem(testing::problemOptions("taylor", ale_keys, 0.25, "ale"));
   ASSERT_FALSE(ale.failed) << ale.failure;
   EXPECT_EQ(ale.steps, lagrange.steps);
-  EXPECT_EQ(largestDifference(ale.fields, lagrange.fields), 0.0);
+  EXPECT_EQ(testing::maxRelativeDifference(ale.fields, lagrange.fields), 0.0);
 }
 
 TEST(AleMode, BoundedParcelFractionsKeepTheBallsTraceCellsPositive) {
@@ -282,7 +255,7 @@ TEST(AleMode, BoundedParcelFractionsKeepTheBallsTraceCellsPositive) {
   EXPECT_TRUE(free.failed);
   const RunResult bounded = runProblem(testing::problemOptions("ball", keys, 1.0, "ale"));
   ASSERT_FALSE(bounded.failed) << bounded.failure;
-  EXPECT_LT(bounded.drift_mass, 1e-13);
+  EXPECT_LT(bounded.drift_mass, 1e-12);  // (round-off: the near-vacuum gas beside GPa solids)
   EXPECT_LT(bounded.drift_energy, 1e-12);
 }
 

@@ -50,36 +50,6 @@ std::string sharedScratch(const std::string& name) {
   return dir;
 }
 
-// Largest relative difference of every field of two runs' final states.
-double maxRelativeDifference(const FinalFields& a, const FinalFields& b) {
-  double worst = 0.0;
-  auto compare = [&](const auto& x, const auto& y) {
-    if (x.size() != y.size()) {
-      worst = INFINITY;
-      return;
-    }
-    for (std::size_t i = 0; i < x.size(); ++i) {
-      const double u = x.data()[i], v = y.data()[i];
-      if (u == v) continue;
-      worst = std::max(worst, std::abs(u - v) / std::max(std::abs(u), std::abs(v)));
-    }
-  };
-  compare(a.rho, b.rho);
-  compare(a.p, b.p);
-  compare(a.e, b.e);
-  compare(a.vol, b.vol);
-  compare(a.v, b.v);
-  compare(a.x_c, b.x_c);
-  compare(a.S, b.S);
-  compare(a.alpha, b.alpha);
-  compare(a.m_k, b.m_k);
-  compare(a.e_k, b.e_k);
-  compare(a.p_k, b.p_k);
-  compare(a.eps_k, b.eps_k);
-  compare(a.mesh.x_n, b.mesh.x_n);
-  return worst;
-}
-
 // A rank's part is the whole block's cells and nodes, restricted: the same
 // coordinates (bits), connectivity, neighbours and boundary sides, in
 // increasing global id; across the cut, no neighbour and no side.
@@ -288,7 +258,7 @@ TEST(RankCount, DecomposedRunsReproduceTheSingleRankRun) {
     EXPECT_EQ(decomposed.steps, reference.steps) << c.problem;
     // Node sums, upwind choices and face owners are the single rank's: the
     // same bits (the issue asks for 1e-12).
-    const double difference = maxRelativeDifference(reference.fields, decomposed.fields);
+    const double difference = testing::maxRelativeDifference(reference.fields, decomposed.fields);
     EXPECT_LE(difference, 1e-12) << c.problem;
     EXPECT_EQ(difference, 0.0) << c.problem;
     // Totals are summed in another order: round-off.
@@ -602,12 +572,12 @@ void expectRestartsBitForBit(const std::string& mode) {
   resumed.restart_file = checkpoint;
   const RunResult same_ranks = runProblem(resumed);
   EXPECT_EQ(same_ranks.steps, uninterrupted.steps);
-  EXPECT_EQ(maxRelativeDifference(uninterrupted.fields, same_ranks.fields), 0.0);
+  EXPECT_EQ(testing::maxRelativeDifference(uninterrupted.fields, same_ranks.fields), 0.0);
   EXPECT_NEAR(same_ranks.drift_energy, uninterrupted.drift_energy, 1e-12);
   if (!parallel::isRoot()) return;
   parallel::SerialScope serial;
   const RunResult one_rank = runProblem(resumed);
-  EXPECT_EQ(maxRelativeDifference(uninterrupted.fields, one_rank.fields), 0.0);
+  EXPECT_EQ(testing::maxRelativeDifference(uninterrupted.fields, one_rank.fields), 0.0);
 }
 
 TEST(Restart, ContinuesBitForBitOnTheSameAndOnOneRank) {

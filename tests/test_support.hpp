@@ -231,4 +231,34 @@ inline StateTotals finalTotals(const FinalFields& fields) {
   return totals;
 }
 
+// Largest relative difference of every field of two runs' final states.
+inline double maxRelativeDifference(const FinalFields& a, const FinalFields& b) {
+  double worst = 0.0;
+  auto compare = [&](const auto& x, const auto& y) {
+    if (x.size() != y.size()) {
+      worst = INFINITY;
+      return;
+    }
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      const double u = x.data()[i], v = y.data()[i];
+      if (u == v) continue;
+      worst = std::max(worst, std::abs(u - v) / std::max(std::abs(u), std::abs(v)));
+    }
+  };
+  compare(a.rho, b.rho);
+  compare(a.p, b.p);
+  compare(a.e, b.e);
+  compare(a.vol, b.vol);
+  compare(a.v, b.v);
+  compare(a.x_c, b.x_c);
+  compare(a.S, b.S);
+  compare(a.alpha, b.alpha);
+  compare(a.m_k, b.m_k);
+  compare(a.e_k, b.e_k);
+  compare(a.p_k, b.p_k);
+  compare(a.eps_k, b.eps_k);
+  compare(a.mesh.x_n, b.mesh.x_n);
+  return worst;
+}
+
 }  // namespace lagremap::testing
