@@ -371,6 +371,17 @@ TEST(CommandLine, SodRunWritesSummaryWithPassingChecks) {
   EXPECT_GT(numberAfter(block, "velocity", 0), 0.0) << block;
   EXPECT_GT(numberAfter(block, "pressure", 0), 0.0) << block;
   EXPECT_NE(block.find("\"note\": \"integral over the bar"), std::string::npos) << block;
+  // the mesh quality, final and lowest, and per step in history.csv (a bar
+  // of boxes: right angles, 1)
+  const double quality = numberAfter(json, "min_scaled_jacobian", json.find("\"mesh_quality\""));
+  EXPECT_GT(quality, 0.999) << json;
+  EXPECT_LE(quality, 1.0);
+  std::ifstream history(dir + "/history.csv");
+  std::string header, line, last;
+  std::getline(history, header);
+  while (std::getline(history, line)) last = line;
+  EXPECT_EQ(header.substr(header.rfind(',') + 1), "min_scaled_jacobian");
+  EXPECT_EQ(std::stod(last.substr(last.rfind(',') + 1)), quality);
   for (const char* file :
        {"history.csv", "sod_profile.csv", "fields.xmf", "fields_00000.h5", "fields_00001.h5"}) {
     EXPECT_TRUE(std::filesystem::exists(dir + "/" + file)) << file;
