@@ -82,6 +82,9 @@ struct State {
   RealView vol_c0;
   MatSym6View S_ck0, B_ck0;
   MatRealView eps_ck0;
+  // Material masses of the step start, kept where a remap follows (the
+  // Lagrangian step does not change them; RemapStep allocates them).
+  MatRealView m_ck0;
 
   // Corner arrays, corner id = 8 c + local node.
   Vec3View A_cp;  // corner vector sum_f s_pf n_pf = d v_c / d x_p

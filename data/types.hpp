@@ -18,6 +18,17 @@ using HostSpace = Kokkos::HostSpace;
 template <class DataType>
 using DeviceView = Kokkos::View<DataType, MemSpace>;
 
+// Where a step's reductions leave their results for the host (src/step_report.hpp):
+// memory the device writes and the host reads after one fence, without a
+// copy (pinned host memory on a GPU).
+#if defined(KOKKOS_ENABLE_CUDA)
+using ReportSpace = Kokkos::CudaHostPinnedSpace;
+#else
+using ReportSpace = HostSpace;
+#endif
+template <class DataType>
+using ReportView = Kokkos::View<DataType, ReportSpace>;
+
 using RealView = DeviceView<Real*>;            // one value per cell or node
 using Vec3View = DeviceView<Real* [3]>;        // x, y, z per entity
 using Sym6View = DeviceView<Real* [6]>;        // xx, yy, zz, xy, yz, xz per entity

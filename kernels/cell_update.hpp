@@ -107,14 +107,15 @@ static inline void updateCells(const Mesh& mesh, const State& state, double dt_s
 // The end of a stage in one sweep: each cell's update, then its geometry and
 // closure at the new node positions (both cell-local, so one kernel does them
 // while the cell's corner records are in cache); returns the time-step
-// candidates of the new state. Same results as updateCells + computeGeometry.
+// candidates of the new state, left in `into` without waiting. Same results
+// as updateCells + computeGeometry.
 // `what`: see StageEnd.
 // The staged form (KernelForm) runs the cell update and the geometry as two
 // kernels.
-static inline StepLimit updateCellsAndGeometry(const Mesh& mesh, const State& state,
-                                               double dt_stage, const TimeStepControls& controls,
-                                               StageEnd what = StageEnd::Full,
-                                               KernelForm form = defaultKernelForm()) {
+static inline void updateCellsAndGeometry(const Mesh& mesh, const State& state, double dt_stage,
+                                          const TimeStepControls& controls,
+                                          const StepLimitView& into, StageEnd what = StageEnd::Full,
+                                          KernelForm form = defaultKernelForm()) {
   const auto cell_nodes = mesh.cell_nodes;
   const auto x_n = mesh.x_n;
   const auto s = state;
@@ -127,7 +128,8 @@ static inline StepLimit updateCellsAndGeometry(const Mesh& mesh, const State& st
               StageRelaxation relaxation;
               updateCell(cell_nodes, x_n, s, dt_stage, c, relaxation);
               cellShapeForRemap(geometry.shape, s, c, best, &relaxation);
-            });
+            },
+            into);
       }
       return stepLimitOverCellGeometries<true>(
           "lagremap::cell_update::update_and_geometry", mesh,
@@ -135,7 +137,8 @@ static inline StepLimit updateCellsAndGeometry(const Mesh& mesh, const State& st
             StageRelaxation relaxation;
             updateCell(cell_nodes, x_n, s, dt_stage, c, relaxation);
             cellThermoOnGeometry(geometry, s, controls, c, best, true, &relaxation);
-          });
+          },
+          into);
     }
   }
   updateCells(mesh, state, dt_stage, KernelForm::Staged);
@@ -149,13 +152,15 @@ static inline StepLimit updateCellsAndGeometry(const Mesh& mesh, const State& st
         KOKKOS_LAMBDA(const NodesOfCell& nodes, StepLimit& best) {
           hex::PrismBase base{};  // (read on prisms only)
           cellShapeForRemap(stagedShape(nodes, z_prisms, base), s, nodes.c, best, nullptr, false);
-        });
+        },
+        into);
   }
-  return stepLimitOverCellNodes(
+  stepLimitOverCellNodes(
       "lagremap::cell_update::geometry", mesh,
       KOKKOS_LAMBDA(const NodesOfCell& nodes, StepLimit& best) {
         cellThermoOnNodes(nodes, z_prisms, s, controls, best, false);
-      });
+      },
+      into);
 }
 
 }  // namespace lagremap

@@ -8,6 +8,7 @@
 // Its kernel launchers are `static` (internal linkage: docs/method.md §7.2).
 #pragma once
 
+#include "../data/fence.hpp"
 #include "../data/mesh.hpp"
 #include "../data/state.hpp"
 #include "constitutive.hpp"
@@ -464,35 +465,19 @@ KOKKOS_INLINE_FUNCTION int chunkCells(Index n_cells, Index first) {
   return n_cells - first < hex::kCellLanes ? int(n_cells - first) : hex::kCellLanes;
 }
 
-// The smallest time-step candidate over a mesh's cells: `cell(c, best)`
-// updates cell c and folds its candidates into `best`. A ghost cell's go to a
-// scratch value: they are its owner's to propose.
-template <class CellUpdate>
-static StepLimit stepLimitOverCells(const char* label, const Mesh& mesh, const CellUpdate& cell) {
-  const auto owned = mesh.cell_owned;
-  StepLimit limit;
-  Kokkos::parallel_reduce(
-      label, Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
-      KOKKOS_LAMBDA(const Index c, StepLimit& best) {
-        StepLimit ghost{};
-        cell(c, owned(c) ? best : ghost);
-      },
-      StepLimitReducer(limit));
-  return limit;
-}
-
-// The same for cells whose geometry is computed from the mesh's nodes a
-// chunk at a time (chunkGeometry): `cell(c, geometry, best)`, kCornerSums as
-// for hex::cellGeometry.
+// The smallest time-step candidate over a mesh's cells, left in `into`
+// without waiting: `cell(c, geometry, best)` updates cell c and folds its
+// candidates into `best` (a ghost cell's go to a scratch value: they are its
+// owner's to propose), its geometry computed from the mesh's nodes a chunk at
+// a time (chunkGeometry), kCornerSums as for hex::cellGeometry.
 template <bool kCornerSums, class CellUpdate>
-static StepLimit stepLimitOverCellGeometries(const char* label, const Mesh& mesh,
-                                             const CellUpdate& cell) {
+static void stepLimitOverCellGeometries(const char* label, const Mesh& mesh, const CellUpdate& cell,
+                                        const StepLimitView& into) {
   const auto owned = mesh.cell_owned;
   const auto cell_nodes = mesh.cell_nodes;
   const auto x_n = mesh.x_n;
   const bool z_prisms = mesh.z_prisms;
   const Index n_cells = mesh.n_cells;
-  StepLimit limit;
   Kokkos::parallel_reduce(
       label, Kokkos::RangePolicy<ExecSpace>(0, cellChunks(mesh)),
       KOKKOS_LAMBDA(const Index chunk, StepLimit& best) {
@@ -505,27 +490,24 @@ static StepLimit stepLimitOverCellGeometries(const char* label, const Mesh& mesh
           cell(first + i, geometry[i], owned(first + i) ? best : ghost);
         }
       },
-      StepLimitReducer(limit));
-  return limit;
+      StepLimitIntoView(into));
 }
 
 // The same for the staged form: `cell(nodes, best)` gets the cell's nodes
 // (NodesOfCell).
 template <class CellUpdate>
-static StepLimit stepLimitOverCellNodes(const char* label, const Mesh& mesh,
-                                        const CellUpdate& cell) {
+static void stepLimitOverCellNodes(const char* label, const Mesh& mesh, const CellUpdate& cell,
+                                   const StepLimitView& into) {
   const auto owned = mesh.cell_owned;
   const auto cell_nodes = mesh.cell_nodes;
   const auto x_n = mesh.x_n;
-  StepLimit limit;
   Kokkos::parallel_reduce(
       label, Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
       KOKKOS_LAMBDA(const Index c, StepLimit& best) {
         StepLimit ghost{};
         cell(NodesOfCell{cell_nodes, x_n, c}, owned(c) ? best : ghost);
       },
-      StepLimitReducer(limit));
-  return limit;
+      StepLimitIntoView(into));
 }
 
 // The staged form's volume sharing at the end of a stage: each mixed cell's
@@ -548,11 +530,11 @@ static inline void shareVolumeChanges(const Mesh& mesh, const State& state) {
       });
 }
 
-// Returns the smallest time-step candidate (or a negative value and the
-// failure code for an invalid cell).
-static inline StepLimit computeGeometry(const Mesh& mesh, const State& state,
-                                        const TimeStepControls& controls,
-                                        KernelForm form = defaultKernelForm()) {
+// The smallest time-step candidate (or a negative value and the failure
+// code for an invalid cell), left in `into` without waiting.
+static inline void computeGeometry(const Mesh& mesh, const State& state,
+                                   const TimeStepControls& controls, const StepLimitView& into,
+                                   KernelForm form = defaultKernelForm()) {
   const auto s = state;
   if constexpr (kFusedKernelsBuilt) {
     if (form == KernelForm::Fused) {
@@ -560,14 +542,27 @@ static inline StepLimit computeGeometry(const Mesh& mesh, const State& state,
           "lagremap::geometry::cells", mesh,
           KOKKOS_LAMBDA(const Index c, const hex::CellGeometry& geometry, StepLimit& best) {
             cellThermoOnGeometry(geometry, s, controls, c, best, false);
-          });
+          },
+          into);
     }
   }
   const bool z_prisms = mesh.z_prisms;
-  return stepLimitOverCellNodes(
-      "lagremap::geometry::cells", mesh, KOKKOS_LAMBDA(const NodesOfCell& nodes, StepLimit& best) {
+  stepLimitOverCellNodes(
+      "lagremap::geometry::cells", mesh,
+      KOKKOS_LAMBDA(const NodesOfCell& nodes, StepLimit& best) {
         cellThermoOnNodes(nodes, z_prisms, s, controls, best, false);
-      });
+      },
+      into);
+}
+
+// The same, waited for (set-up, tests: it allocates its result).
+static inline StepLimit computeGeometry(const Mesh& mesh, const State& state,
+                                        const TimeStepControls& controls,
+                                        KernelForm form = defaultKernelForm()) {
+  const StepLimitView limit("lagremap::geometry::limit");
+  computeGeometry(mesh, state, controls, limit, form);
+  fenceFor("lagremap::geometry: the step limit");
+  return limit();
 }
 
 }  // namespace lagremap

@@ -99,11 +99,13 @@ KOKKOS_INLINE_FUNCTION double cellScaledJacobian(const Vec3 x[8]) {
 }
 
 // The smallest scaled Jacobian of this rank's owned cells at node positions
-// x_n (1 for a mesh without owned cells); the caller reduces over ranks.
-static inline double smallestScaledJacobian(const Mesh& mesh, const Vec3View& x_n) {
+// x_n, left in `into` without waiting (the reducer's identity for a mesh
+// without owned cells: read it through meshQualityOf); the caller reduces
+// over ranks.
+static inline void smallestScaledJacobian(const Mesh& mesh, const Vec3View& x_n,
+                                          const ReportView<double>& into) {
   const auto cell_nodes = mesh.cell_nodes;
   const auto owned = mesh.cell_owned;
-  double smallest = 1.0;
   Kokkos::parallel_reduce(
       "lagremap::mesh_quality::smallest_scaled_jacobian",
       Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
@@ -112,8 +114,11 @@ static inline double smallestScaledJacobian(const Mesh& mesh, const Vec3View& x_
         const double quality = cellScaledJacobianOf(NodesOfCell{cell_nodes, x_n, c});
         lowest = quality < lowest ? quality : lowest;
       },
-      Kokkos::Min<double>(smallest));
-  return smallest < 1.0 ? smallest : 1.0;  // (no owned cell: the reducer's identity)
+      Kokkos::Min<double, ReportSpace>(into));
+}
+// A mesh's quality from what smallestScaledJacobian left: 1 at most.
+inline double meshQualityOf(double smallest) {
+  return smallest < 1.0 ? smallest : 1.0;
 }
 
 }  // namespace lagremap

@@ -20,6 +20,7 @@
 // Its kernel launchers are `static` (internal linkage: docs/method.md §7.2).
 #pragma once
 
+#include "../data/fence.hpp"
 #include "../data/mesh.hpp"
 #include "mesh_quality.hpp"
 
@@ -278,6 +279,7 @@ static inline GuardTally targetCellQualities(const Mesh& mesh, const Vec3View& x
         sum.lowest = relaxed < sum.lowest ? relaxed : sum.lowest;
       },
       Kokkos::Sum<GuardTally>(tally));
+  fenceFor("lagremap::ale: the target's qualities");  // (the reduction's wait, told to the tools)
   return tally;
 }
 
@@ -302,6 +304,7 @@ static inline long markWorsenedCells(const Mesh& mesh, const Vec3View& x_lagrang
         if (worse && owned(c)) ++marked;
       },
       count);
+  fenceFor("lagremap::ale: the worsened cells");
   return count;
 }
 

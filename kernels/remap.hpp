@@ -831,12 +831,12 @@ KOKKOS_FORCEINLINE_FUNCTION void remapCell(const State& s, const CellFacesView& 
 }  // namespace detail
 
 // Sum of the upwind fluxes of the cell's 12 face-side regions, the new state on
-// the initial mesh, clean-up and kinetic-energy fix (docs/method.md §A9-A11). Returns what
-// crossed the outer boundary.
-static inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state,
-                                            const RemapLayout& layout,
-                                            const RemapControls& controls,
-                                            const RemapFields& fields, const SweptFaces& swept) {
+// the initial mesh, clean-up and kinetic-energy fix (docs/method.md §A9-A11). What
+// crossed the outer boundary (this rank's) is left in `crossed` without waiting.
+static inline void remapUpdate(const Mesh& mesh, const State& state, const RemapLayout& layout,
+                               const RemapControls& controls, const RemapFields& fields,
+                               const SweptFaces& swept,
+                               const ReportView<RemapBoundaryFlux>& crossed_into) {
   const auto neighbors = mesh.cell_neighbors;
   const auto owned = mesh.cell_owned;
   const auto s = state;
@@ -846,7 +846,7 @@ static inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state
   const double alpha_floor = controls.alpha_floor;
   const bool kinetic_energy_fix = controls.kinetic_energy_fix;
   const auto policy = Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells);
-  RemapBoundaryFlux boundary;
+  const Kokkos::Sum<RemapBoundaryFlux, ReportSpace> boundary(crossed_into);
   if constexpr (kFusedKernelsBuilt) {
     if (controls.kernels == KernelForm::Fused) {  // the thread's own work arrays
       Kokkos::parallel_reduce(
@@ -860,7 +860,7 @@ static inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state
                               internal, crossed);
           },
           boundary);
-      return boundary;
+      return;
     }
   }
   // the staged form: the crossings first (a reduction of their own), then
@@ -890,7 +890,16 @@ static inline RemapBoundaryFlux remapUpdate(const Mesh& mesh, const State& state
                           kinetic_energy_fix, c, integral_row, range, alpha, mass, internal,
                           unused);
       });
-  return boundary;
+}
+
+// The mesh moved onto the remap's target, node by node (a kernel, not a
+// deep copy: no host synchronisation, docs/performance.md §8).
+static inline void moveNodesTo(const Vec3View& x_n, const Vec3View& target) {
+  Kokkos::parallel_for(
+      "lagremap::remap::move_nodes", Kokkos::RangePolicy<ExecSpace>(0, x_n.extent(0)),
+      KOKKOS_LAMBDA(const Index n) {
+        for (int d = 0; d < 3; ++d) x_n(n, d) = target(n, d);
+      });
 }
 
 }  // namespace lagremap

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "../data/math.hpp"
+#include "../data/types.hpp"
 
 namespace lagremap {
 
@@ -24,6 +25,10 @@ struct TimeStepControls {
 
 using StepLimitReducer = Kokkos::MinLoc<double, int>;
 using StepLimit = StepLimitReducer::value_type;
+// A limit a kernel leaves for the host to read after a fence (StepReport):
+// the reduction writes it without waiting.
+using StepLimitView = ReportView<StepLimit>;
+using StepLimitIntoView = Kokkos::MinLoc<double, int, ReportSpace>;
 
 KOKKOS_INLINE_FUNCTION void proposeStepLimit(StepLimit& best, double dt, int cell, int code) {
   if (dt < best.val) {

@@ -204,10 +204,9 @@ void timedLoop(benchmark::State& state, Body&& body) {
 void BM_Geometry(benchmark::State& state) {
   Bench& b = *g_bench;
   b.restore();
-  timedLoop(state, [&] {
-    const StepLimit limit = lagremap::computeGeometry(b.mesh(), b.state(), b.numerics().step);
-    benchmark::DoNotOptimize(limit.val);
-  });
+  const StepLimitView limit("bench::limit");
+  timedLoop(state,
+            [&] { lagremap::computeGeometry(b.mesh(), b.state(), b.numerics().step, limit); });
   setCellRate(state, "cells_per_second");
 }
 
@@ -262,8 +261,10 @@ void BM_UpdateAndGeometry(benchmark::State& state) {
   const double dt_stage = 0.5 * b.dtBench();
   computeCornerTerms(b.mesh(), b.state(), controls);
   nodalSolve(b.mesh(), b.state(), controls, dt_stage);
-  timedLoop(state,
-            [&] { updateCellsAndGeometry(b.mesh(), b.state(), dt_stage, b.numerics().step); });
+  const StepLimitView limit("bench::limit");
+  timedLoop(state, [&] {
+    updateCellsAndGeometry(b.mesh(), b.state(), dt_stage, b.numerics().step, limit);
+  });
   setCellRate(state, "cells_per_second");
 }
 
@@ -331,15 +332,14 @@ void BM_SweptFaces(benchmark::State& state) {
 void BM_RemapFluxes(benchmark::State& state) {
   Bench& b = *g_bench;
   RemapInputs& r = *g_remap;
+  const ReportView<RemapBoundaryFlux> crossed("bench::crossed");
   for (auto _ : state) {
     r.prepare(b);  // untimed
     Kokkos::fence();
     Kokkos::Timer timer;
-    const RemapBoundaryFlux crossed =
-        remapUpdate(b.mesh(), b.state(), r.layout, r.controls, r.fields, r.swept);
+    remapUpdate(b.mesh(), b.state(), r.layout, r.controls, r.fields, r.swept, crossed);
     Kokkos::fence();
     state.SetIterationTime(timer.seconds());
-    benchmark::DoNotOptimize(crossed.v[0]);
   }
   setCellRate(state, "cells_per_second");
 }
@@ -360,8 +360,10 @@ void BM_MeshRelaxation(benchmark::State& state) {
   setCellRate(state, "cells_per_second");
 }
 
-// A whole Lagrange-Remap step as the driver takes it: advance, remap, geometry;
+// A whole Lagrange-Remap step as the driver takes it: the Lagrangian step, the
+// remap and the geometry launched, then one fence for the step's report;
 // `ale`: an ALE step, the remap onto the relaxed mesh (docs/method.md §8).
+// Its counters: the Kokkos events of a step (src/kokkos_events.hpp).
 void BM_LagrangeRemapStep(benchmark::State& state, bool ale) {
   Bench& b = *g_bench;
   b.restore();
@@ -374,24 +376,28 @@ void BM_LagrangeRemapStep(benchmark::State& state, bool ale) {
     lagrange.remapFollowsEveryStep();
   }
   const double dt = b.dtBench();
-  long step = 0;
+  StepReport report;
+  StepEvents events;
   for (auto _ : state) {
+    const KokkosEventCounts before = kokkosEventCounts();
     Kokkos::Timer timer;
-    lagrange.advance(dt, ++step);
+    lagrange.launch(dt, report);
     if (ale) {
-      remap.apply(relaxation.target());
+      remap.launch(relaxation.target(), report.crossed);
     } else {
-      remap.apply();
+      remap.launch(report.crossed);
     }
-    const StepLimit limit = lagrange.computeGeometry();
-    Kokkos::fence();
+    lagrange.computeGeometry(report.after_remap);
+    fenceFor("bench: the step's report");
     state.SetIterationTime(timer.seconds());
-    if (limit.val < dt) {
+    events.add(kokkosEventCounts() - before);
+    if (report.predictor().val < 0.0 || report.after_remap().val < dt) {
       state.SkipWithError("the fixed benchmark dt exceeds the stable dt");
       break;
     }
   }
   setCellRate(state, "cell_steps_per_second");
+  bench::setEventCounters(state, events);
 }
 
 void registerBenchmarks() {

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "src/kokkos_events.hpp"
 #include "src/lagrange_step.hpp"
 
 namespace lagremap::bench {
@@ -41,6 +42,14 @@ inline double warmUp(LagrangeStep& lagrange, const Numerics& numerics, long step
   return time;
 }
 
+// The Kokkos events of a benchmark's steps as its counters, per step.
+inline void setEventCounters(benchmark::State& state, const StepEvents& events) {
+  const double per_step = events.steps > 0 ? 1.0 / double(events.steps) : 0.0;
+  state.counters["launches"] = double(events.total.launches) * per_step;
+  state.counters["deep_copies"] = double(events.total.deep_copies) * per_step;
+  state.counters["host_syncs"] = double(events.total.host_syncs) * per_step;
+}
+
 // One whole step per iteration as the driver takes it: advance(dt) at the
 // benchmark's fixed dt, whose last sweep also gives the next step's geometry
 // and dt candidates. `Warm` has restore(), mesh(), state(), timers(),
@@ -53,6 +62,7 @@ void timedFullSteps(benchmark::State& state, Warm& b, int order) {
   LagrangeStep lagrange(b.mesh(), b.state(), numerics, b.timers());
   const double dt = b.dtBench();
   StepLimit limit = lagrange.computeGeometry();
+  StepEvents events;
   long step = 0;
   for (auto _ : state) {
     if (step > 0 && step % kStepsBetweenRestores == 0) {  // untimed
@@ -64,6 +74,7 @@ void timedFullSteps(benchmark::State& state, Warm& b, int order) {
       state.SkipWithError("the fixed benchmark dt exceeds the stable dt");
       break;
     }
+    const KokkosEventCounts before = kokkosEventCounts();
     Kokkos::Timer timer;
     try {
       limit = lagrange.advance(dt, step);
@@ -73,7 +84,9 @@ void timedFullSteps(benchmark::State& state, Warm& b, int order) {
     }
     Kokkos::fence();
     state.SetIterationTime(timer.seconds());
+    events.add(kokkosEventCounts() - before);
   }
+  setEventCounters(state, events);
 }
 
 // Removes `<prefix>N` (e.g. "--n=") from argv before benchmark::Initialize

@@ -57,7 +57,7 @@ VIEWS = {
     "state::v_c": ("cell", 3 * D), "state::v_c0": ("cell", 3 * D), "state::x_c": ("cell", 3 * D),
     "state::S_c": ("cell", 6 * D),
     **{f"state::{name}": ("cell", "M*8") for name in
-       ("alpha_ck", "alpha_ck0", "m_ck", "e_ck", "e_ck0", "p_ck", "p_ck0", "w_ck", "w_ck0",
+       ("alpha_ck", "alpha_ck0", "m_ck", "m_ck0", "e_ck", "e_ck0", "p_ck", "p_ck0", "w_ck", "w_ck0",
         "eps_ck", "eps_ck0")},
     "state::S_ck": ("cell", "M*48"), "state::S_ck0": ("cell", "M*48"),
     "state::n_ck": ("cell", "M*24"),
@@ -70,7 +70,6 @@ VIEWS = {
     "remap::gradient": ("cell", "V*24"), "remap::reach": ("cell", D),
     "remap::integral": ("cell", "V*8"), "remap::source_range": ("cell", "M*32"),
     "remap::dvol_r": ("cell", 12 * D), "remap::moment_r": ("cell", 12 * 3 * D),
-    "remap::m_ck_saved": ("cell", "M*8"),
 }
 
 

@@ -175,22 +175,22 @@ ProblemSetup setupAdvection1D(const Config& config) {
 
 // The body's centroid x (volume-fraction weighted), after every step: its
 // history is advection_body.csv, and its length the number of steps.
-double bodyCentroidX(const Mesh& mesh, const State& state) {
+void sampleBodyCentroidX(const Mesh& mesh, const State& state, const ProbeSlots& slots) {
   const auto alpha = state.alpha_ck;
   const auto vol = state.vol_c;
   const auto x_c = state.x_c;
   const auto owned = mesh.cell_owned;  // sums over the ranks' owned cells
-  SumArray<2> moment;                  // sum alpha v, sum alpha v x
-  Kokkos::parallel_reduce(
+  Kokkos::parallel_reduce(             // sum alpha v, sum alpha v x
       "lagremap::diagnostics::body_centroid", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
       KOKKOS_LAMBDA(const Index c, SumArray<2>& acc) {
         if (!owned(c)) return;
         acc.v[0] += alpha(c, kBody) * vol(c);
         acc.v[1] += alpha(c, kBody) * vol(c) * x_c(c, 0);
       },
-      Kokkos::Sum<SumArray<2>>(moment));
-  parallel::sum(moment.v, 2);
-  return moment.v[1] / moment.v[0];
+      Kokkos::Sum<SumArray<2>, ReportSpace>(slots.sums));
+}
+double bodyCentroidX(const Mesh&, const State&, const ProbeSlots& slots) {
+  return ratioOverRanks(slots);
 }
 
 ProblemResults finishAdvection(const Config& config, const FinalFields& fields, bool two_d) {
@@ -293,8 +293,7 @@ extern const Problem kAdvectionProblem = {
     declareAdvection2D,
     setupAdvection2D,
     finishAdvection2D,
-    bodyCentroidX,
-    "body_centroid_x"};
+    {sampleBodyCentroidX, bodyCentroidX, "body_centroid_x"}};
 
 extern const Problem kAdvection1DProblem = {
     "advection1d",
@@ -303,7 +302,6 @@ extern const Problem kAdvection1DProblem = {
     declareAdvection1D,
     setupAdvection1D,
     finishAdvection1D,
-    bodyCentroidX,
-    "body_centroid_x"};
+    {sampleBodyCentroidX, bodyCentroidX, "body_centroid_x"}};
 
 }  // namespace lagremap

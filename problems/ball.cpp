@@ -118,21 +118,21 @@ ProblemSetup setupBall(const Config& config) {
 }
 
 // The ball's centroid x: its mass-weighted mean of the cell centroids.
-double ballCentroidX(const Mesh& mesh, const State& state) {
+void sampleBallCentroidX(const Mesh& mesh, const State& state, const ProbeSlots& slots) {
   const auto m_k = state.m_ck;
   const auto x_c = state.x_c;
   const auto owned = mesh.cell_owned;  // sums over the ranks' owned cells
-  SumArray<2> moment;                  // sum m_ball, sum m_ball x
-  Kokkos::parallel_reduce(
+  Kokkos::parallel_reduce(             // sum m_ball, sum m_ball x
       "lagremap::diagnostics::ball_centroid", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
       KOKKOS_LAMBDA(const Index c, SumArray<2>& acc) {
         if (!owned(c)) return;
         acc.v[0] += m_k(c, kBall);
         acc.v[1] += m_k(c, kBall) * x_c(c, 0);
       },
-      Kokkos::Sum<SumArray<2>>(moment));
-  parallel::sum(moment.v, 2);
-  return moment.v[1] / moment.v[0];
+      Kokkos::Sum<SumArray<2>, ReportSpace>(slots.sums));
+}
+double ballCentroidX(const Mesh&, const State&, const ProbeSlots& slots) {
+  return ratioOverRanks(slots);
 }
 
 // Mass, x-momentum and first moment in x of cells (mass m_c = rho_c v_c), and
@@ -291,8 +291,7 @@ extern const Problem kBallProblem = {"ball",
                                      declareBall,
                                      setupBall,
                                      finishBall,
-                                     ballCentroidX,
-                                     "ball_centroid_x",
+                                     {sampleBallCentroidX, ballCentroidX, "ball_centroid_x"},
                                      {0.0, 0.5e-6, 1.0e-6, 1.5e-6, 2.0e-6, 2.5e-6}};
 
 }  // namespace lagremap

@@ -42,8 +42,11 @@ ProblemSetup setupPile(const Config& config) {
 }
 
 // Mean sigma_xx = -p + S_xx of the cells touching the wall (x-min side).
-double wallStress(const Mesh& mesh, const State& state) {
-  return sideMeanStressXX(mesh, state, 0);
+void sampleWallStress(const Mesh& mesh, const State& state, const ProbeSlots& slots) {
+  sampleSideMeanStressXX(mesh, state, 0, slots);
+}
+double wallStress(const Mesh&, const State&, const ProbeSlots& slots) {
+  return meanOverRanks(slots);
 }
 
 double meanOver(const std::vector<std::pair<double, double>>& probe, double t0, double t1) {
@@ -120,12 +123,8 @@ ProblemResults finishPile(const Config& config, const FinalFields& fields,
 }  // namespace
 
 extern const Problem kPileProblem = {
-    "pile",
-    "3D hyper-elastic steel bar driven by an end traction (wall stress square wave)",
-    declarePile,
-    setupPile,
-    finishPile,
-    wallStress,
-    "wall_sigma_xx"};
+    "pile",      "3D hyper-elastic steel bar driven by an end traction (wall stress square wave)",
+    declarePile, setupPile,
+    finishPile,  {sampleWallStress, wallStress, "wall_sigma_xx"}};
 
 }  // namespace lagremap

@@ -1,18 +1,27 @@
 // Device reductions problems sample during a run (a side's mean stress or
-// centroid, a material's length along an axis, the largest node x).
+// centroid, a material's length along an axis, the largest node x), each
+// left in the step report's probe slots without waiting (Probe).
 
 #include "../kernels/sum_array.hpp"
+#include "../src/kokkos_events.hpp"
 #include "../src/problem.hpp"
 
 namespace lagremap {
 
+double Probe::measure(const Mesh& mesh, const State& state) const {
+  const ProbeSlots slots;
+  sample(mesh, state, slots);
+  fenceFor("lagremap::probe: a measurement");
+  return value(mesh, state, slots);
+}
+
 namespace {
-// Mean of value(c) over the cells with a face on `side`: one reduction of (sum, count).
+// Sum and count of value(c) over the cells with a face on `side`: one reduction.
 template <class Value>
-double sideMean(const Mesh& mesh, int side, const char* label, Value value) {
+void sampleSideMean(const Mesh& mesh, int side, const char* label, Value value,
+                    const ProbeSlots& slots) {
   const auto face_side = mesh.cell_face_side;
   const auto owned = mesh.cell_owned;
-  SumArray<2> sums;
   Kokkos::parallel_reduce(
       label, Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
       KOKKOS_LAMBDA(const Index c, SumArray<2>& acc) {
@@ -21,35 +30,34 @@ double sideMean(const Mesh& mesh, int side, const char* label, Value value) {
           acc.v[1] += 1.0;
         }
       },
-      Kokkos::Sum<SumArray<2>>(sums));
-  parallel::sum(sums.v, 2);
-  return sums.v[1] > 0 ? sums.v[0] / sums.v[1] : 0.0;
+      Kokkos::Sum<SumArray<2>, ReportSpace>(slots.sums));
 }
 }  // namespace
 
-double sideMeanStressXX(const Mesh& mesh, const State& state, int side) {
+void sampleSideMeanStressXX(const Mesh& mesh, const State& state, int side,
+                            const ProbeSlots& slots) {
   const auto p = state.p_c;
   const auto S = state.S_c;
-  return sideMean(
+  sampleSideMean(
       mesh, side, "lagremap::diagnostics::side_stress_xx",
-      KOKKOS_LAMBDA(const Index c) { return -p(c) + S(c, 0); });
+      KOKKOS_LAMBDA(const Index c) { return -p(c) + S(c, 0); }, slots);
 }
 
-double sideMeanCentroid(const Mesh& mesh, const State& state, int side, int axis) {
+void sampleSideMeanCentroid(const Mesh& mesh, const State& state, int side, int axis,
+                            const ProbeSlots& slots) {
   const auto x_c = state.x_c;
-  return sideMean(
+  sampleSideMean(
       mesh, side, "lagremap::diagnostics::side_centroid",
-      KOKKOS_LAMBDA(const Index c) { return x_c(c, axis); });
+      KOKKOS_LAMBDA(const Index c) { return x_c(c, axis); }, slots);
 }
 
-double materialLengthAlongAxis(const char* label, const Mesh& mesh, const State& state,
-                               bool z_axis_too) {
+void sampleMaterialLengthAlongAxis(const char* label, const Mesh& mesh, const State& state,
+                                   bool z_axis_too, const ProbeSlots& slots) {
   const auto x_n = mesh.x_n;
   const auto cell_nodes = mesh.cell_nodes;
   const auto alpha = state.alpha_ck;
   const auto vol = state.vol_c;
   const auto owned = mesh.cell_owned;
-  double length = 0.0;
   Kokkos::parallel_reduce(
       label, Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
       KOKKOS_LAMBDA(const Index c, double& sum) {
@@ -67,18 +75,35 @@ double materialLengthAlongAxis(const char* label, const Mesh& mesh, const State&
             math::fabs(lo[1]) <= 1e-9 * dy && (!z_axis_too || math::fabs(lo[2]) <= 1e-9 * dz);
         if (owned(c) && on_axis) sum += alpha(c, 0) * vol(c) / (dy * dz);
       },
-      length);
-  return parallel::sum(length);
+      Kokkos::Sum<double, ReportSpace>(slots.scalar));
 }
 
-double largestNodeX(const char* label, const Mesh& mesh) {
+void sampleLargestNodeX(const char* label, const Mesh& mesh, const ProbeSlots& slots) {
   const auto x_n = mesh.x_n;
-  double largest = 0.0;
   Kokkos::parallel_reduce(
       label, Kokkos::RangePolicy<ExecSpace>(0, mesh.n_nodes),
       KOKKOS_LAMBDA(const Index n, double& acc) { acc = x_n(n, 0) > acc ? x_n(n, 0) : acc; },
-      Kokkos::Max<double>(largest));
-  return parallel::max(largest);
+      Kokkos::Max<double, ReportSpace>(slots.scalar));
+}
+
+double sumOverRanks(const ProbeSlots& slots) {
+  return parallel::sum(slots.scalar());
+}
+
+double largestOverRanks(const ProbeSlots& slots) {
+  return parallel::max(slots.scalar());
+}
+
+double meanOverRanks(const ProbeSlots& slots) {
+  SumArray<2> sums = slots.sums();
+  parallel::sum(sums.v, 2);
+  return sums.v[1] > 0 ? sums.v[0] / sums.v[1] : 0.0;
+}
+
+double ratioOverRanks(const ProbeSlots& slots) {
+  SumArray<2> sums = slots.sums();
+  parallel::sum(sums.v, 2);
+  return sums.v[1] / sums.v[0];
 }
 
 }  // namespace lagremap

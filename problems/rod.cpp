@@ -142,10 +142,16 @@ ProblemSetup setupRod(const Config& config) {
 // x = 0). Remap: the copper volume of the row of cells along the axis (the
 // cells with a corner on it) over the row's cross-section, sum alpha v /
 // (dy dz): a smooth measure (the check reads the alpha = 1/2 front).
-double rodLength(const Mesh& mesh, const State& state) {
-  return state.n_materials > 1
-             ? materialLengthAlongAxis("lagremap::diagnostics::rod_length_alpha", mesh, state, true)
-             : largestNodeX("lagremap::diagnostics::rod_length", mesh);
+void sampleRodLength(const Mesh& mesh, const State& state, const ProbeSlots& slots) {
+  if (state.n_materials > 1) {
+    sampleMaterialLengthAlongAxis("lagremap::diagnostics::rod_length_alpha", mesh, state, true,
+                                  slots);
+  } else {
+    sampleLargestNodeX("lagremap::diagnostics::rod_length", mesh, slots);
+  }
+}
+double rodLength(const Mesh&, const State& state, const ProbeSlots& slots) {
+  return state.n_materials > 1 ? sumOverRanks(slots) : largestOverRanks(slots);
 }
 
 // Lagrange: the largest distance from the axis of a node on the wall (the
@@ -273,7 +279,6 @@ extern const Problem kRodProblem = {
     declareRod,
     setupRod,
     finishRod,
-    rodLength,
-    "rod_length"};
+    {sampleRodLength, rodLength, "rod_length"}};
 
 }  // namespace lagremap

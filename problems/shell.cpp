@@ -19,6 +19,7 @@
 #include "../src/diagnostics.hpp"
 #include "../src/exact_sum.hpp"
 #include "../src/howell_ball.hpp"
+#include "../src/kokkos_events.hpp"
 #include "../src/materials.hpp"
 #include "../src/problem.hpp"
 
@@ -127,6 +128,13 @@ ProblemSetup setupShell(const Config& config) {
 }
 
 // Inner radius of the shell after every step.
+// A slab cell's area in its plane, v / dz (VTK nodes 0 and 4 are the bottom
+// and top of the cell's first z-edge).
+KOKKOS_INLINE_FUNCTION double cellArea(const Vec3View& x_n, const CellNodesView& cell_nodes,
+                                       const RealView& vol, Index c) {
+  return vol(c) / (x_n(cell_nodes(c, 4), 2) - x_n(cell_nodes(c, 0), 2));
+}
+
 // Lagrange: the smallest node radius (the inner surface).
 // Remap: the radius of the circle whose area is that of the gas inside the
 // shell, sqrt(sum alpha_gas a_c / pi) over the cells inside the shell's
@@ -134,9 +142,8 @@ ProblemSetup setupShell(const Config& config) {
 // radius sqrt(<r^2>) weighted by beryllium area lies in its pure band). For a
 // round interface smeared symmetrically this is the radius of the
 // alpha = 1/2 contour, measured over every direction at once.
-double innerRadius(const Mesh& mesh, const State& state) {
+void sampleInnerRadius(const Mesh& mesh, const State& state, const ProbeSlots& slots) {
   const auto x_n = mesh.x_n;
-  double radius = 0.0;
   if (state.n_materials == 1) {
     Kokkos::parallel_reduce(
         "lagremap::diagnostics::inner_radius", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_nodes),
@@ -144,38 +151,46 @@ double innerRadius(const Mesh& mesh, const State& state) {
           const double r = math::sqrt(x_n(n, 0) * x_n(n, 0) + x_n(n, 1) * x_n(n, 1));
           acc = r < acc ? r : acc;
         },
-        Kokkos::Min<double>(radius));
-    return parallel::min(radius);
+        Kokkos::Min<double, ReportSpace>(slots.scalar));
+    return;
   }
   const auto cell_nodes = mesh.cell_nodes;
   const auto owned = mesh.cell_owned;  // sums over the ranks' owned cells
   const auto alpha = state.alpha_ck;
   const auto vol = state.vol_c;
   const auto x_c = state.x_c;
-  // VTK nodes 0 and 4 are the bottom and top of the cell's first z-edge.
-  auto area = KOKKOS_LAMBDA(const Index c) {
-    return vol(c) / (x_n(cell_nodes(c, 4), 2) - x_n(cell_nodes(c, 0), 2));
-  };
-  SumArray<2> be_moments;  // sum alpha_be a_c, sum alpha_be a_c r_c^2
-  Kokkos::parallel_reduce(
+  Kokkos::parallel_reduce(  // sum alpha_be a_c, sum alpha_be a_c r_c^2
       "lagremap::diagnostics::shell_mean_radius", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
       KOKKOS_LAMBDA(const Index c, SumArray<2>& acc) {
         if (!owned(c)) return;
-        const double a = alpha(c, 0) * area(c);
+        const double a = alpha(c, 0) * cellArea(x_n, cell_nodes, vol, c);
         acc.v[0] += a;
         acc.v[1] += a * (x_c(c, 0) * x_c(c, 0) + x_c(c, 1) * x_c(c, 1));
       },
-      Kokkos::Sum<SumArray<2>>(be_moments));
+      Kokkos::Sum<SumArray<2>, ReportSpace>(slots.sums));
+}
+
+double innerRadius(const Mesh& mesh, const State& state, const ProbeSlots& slots) {
+  if (state.n_materials == 1) return parallel::min(slots.scalar());
+  SumArray<2> be_moments = slots.sums();
   parallel::sum(be_moments.v, 2);
   const double mean_r2 = be_moments.v[1] / be_moments.v[0];
+  // the second pass needs the first's mean radius over every rank: waited for
+  const auto x_n = mesh.x_n;
+  const auto cell_nodes = mesh.cell_nodes;
+  const auto owned = mesh.cell_owned;
+  const auto alpha = state.alpha_ck;
+  const auto vol = state.vol_c;
+  const auto x_c = state.x_c;
   double gas_inside = 0.0;
   Kokkos::parallel_reduce(
       "lagremap::diagnostics::shell_inner_gas", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
       KOKKOS_LAMBDA(const Index c, double& acc) {
         const double r2 = x_c(c, 0) * x_c(c, 0) + x_c(c, 1) * x_c(c, 1);
-        if (owned(c) && r2 < mean_r2) acc += alpha(c, 1) * area(c);
+        if (owned(c) && r2 < mean_r2) acc += alpha(c, 1) * cellArea(x_n, cell_nodes, vol, c);
       },
       gas_inside);
+  fenceFor("lagremap::diagnostics: the shell's inner gas");  // (Kokkos 3 reports none)
   return std::sqrt(parallel::sum(gas_inside) / kPi);
 }
 
@@ -398,7 +413,6 @@ extern const Problem kShellProblem = {
     declareShell,
     setupShell,
     finishShell,
-    innerRadius,
-    "inner_radius"};
+    {sampleInnerRadius, innerRadius, "inner_radius"}};
 
 }  // namespace lagremap

@@ -92,10 +92,16 @@ ProblemSetup setupTaylor(const Config& config) {
 // Remap (two materials): the aluminium volume along the row of cells just
 // above the axis divided by the row's cross-section, sum alpha v / (dy dz),
 // a smooth measure of the length (the check reads the alpha = 0.5 contour).
-double barLength(const Mesh& mesh, const State& state) {
-  return state.n_materials > 1 ? materialLengthAlongAxis("lagremap::diagnostics::bar_length_alpha",
-                                                         mesh, state, false)
-                               : largestNodeX("lagremap::diagnostics::bar_length", mesh);
+void sampleBarLength(const Mesh& mesh, const State& state, const ProbeSlots& slots) {
+  if (state.n_materials > 1) {
+    sampleMaterialLengthAlongAxis("lagremap::diagnostics::bar_length_alpha", mesh, state, false,
+                                  slots);
+  } else {
+    sampleLargestNodeX("lagremap::diagnostics::bar_length", mesh, slots);
+  }
+}
+double barLength(const Mesh&, const State& state, const ProbeSlots& slots) {
+  return state.n_materials > 1 ? sumOverRanks(slots) : largestOverRanks(slots);
 }
 
 ProblemResults finishTaylor(const Config& config, const FinalFields& fields,
@@ -162,7 +168,6 @@ extern const Problem kTaylorProblem = {
     declareTaylor,
     setupTaylor,
     finishTaylor,
-    barLength,
-    "bar_length"};
+    {sampleBarLength, barLength, "bar_length"}};
 
 }  // namespace lagremap

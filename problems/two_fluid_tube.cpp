@@ -259,8 +259,7 @@ extern const Problem kAirHeliumProblem = {
     declareAirHelium,
     setupAirHelium,
     finishAirHelium,
-    nullptr,
-    nullptr,
+    {},
     {},
     kTubeMixedCells};
 
@@ -270,8 +269,7 @@ extern const Problem kWaterAirProblem = {
     declareWaterAir,
     setupWaterAir,
     finishWaterAir,
-    nullptr,
-    nullptr,
+    {},
     {},
     kTubeMixedCells};
 

@@ -117,7 +117,7 @@ struct CommandLine {
   long output_every = 0, checkpoint_every = 0;
   std::vector<std::string> assignments;
   std::vector<double> output_times;
-  bool quiet = false, list = false, print_config = false;
+  bool quiet = false, list = false, print_config = false, profile_phases = false;
 };
 
 void addOptions(CLI::App& app, CommandLine& line) {
@@ -148,6 +148,9 @@ void addOptions(CLI::App& app, CommandLine& line) {
   app.add_option("--restart", line.restart_file, "continue the run saved in this checkpoint file")
       ->check(nonEmpty());
   app.add_flag("--quiet", line.quiet, "no progress line");
+  app.add_flag("--profile-phases", line.profile_phases,
+               "wait for the device at each phase's ends, so that summary.json's phase times are "
+               "the kernels' own on a GPU (a host synchronisation per phase)");
   app.add_flag("--list", line.list, "list the built-in problems");
   app.add_flag("--print-config", line.print_config,
                "print every key of the problem with its value, unit and help");
@@ -209,6 +212,7 @@ RunOptions runOptions(const Problem& problem, CommandLine& line, Config config, 
   }
   options.output_every = line.output_every;
   options.quiet = line.quiet;
+  options.profile_phases = line.profile_phases;
   options.checkpoint_every = line.checkpoint_every;
   options.restart_file = line.restart_file;
   return options;

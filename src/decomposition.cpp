@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "kokkos_events.hpp"
 #include "parallel.hpp"
 
 namespace lagremap {
@@ -54,7 +55,7 @@ void Halo::exchange(const std::vector<Link>& links, const std::vector<FieldRef>&
       offset += link.send.extent(0) * std::size_t(field.components);
     }
   }
-  Kokkos::fence();
+  fenceFor("lagremap::halo: the packed buffers");
   // MPI reads host memory: a device build stages the buffers through host mirrors.
   Kokkos::deep_copy(send_host_, send_buffer_);
   // (kept from one exchange to the next: no allocation in the time step;
@@ -83,7 +84,7 @@ void Halo::exchange(const std::vector<Link>& links, const std::vector<FieldRef>&
       offset += link.recv.extent(0) * std::size_t(field.components);
     }
   }
-  Kokkos::fence();
+  fenceFor("lagremap::halo: the unpacked fields");
 }
 
 namespace {

@@ -1,54 +1,67 @@
 #include "diagnostics.hpp"
 
+#include "kokkos_events.hpp"
 #include "parallel.hpp"
 
 namespace lagremap {
 
-Totals computeTotals(const Mesh& mesh, const State& state) {
+void sumAudit(const Mesh& mesh, const State& state, const ReportView<AuditSums>& into) {
   const auto s = state;
-  const auto owned = mesh.cell_owned;
-  SumArray<6> sums;
+  const auto cell_owned = mesh.cell_owned;
+  const auto node_owned = mesh.node_owned;
+  const Index n_cells = mesh.n_cells, n_nodes = mesh.n_nodes;
   Kokkos::parallel_reduce(
-      "lagremap::diagnostics::cell_totals", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
-      KOKKOS_LAMBDA(const Index c, SumArray<6>& acc) {
-        if (!owned(c)) return;
-        const double m = s.m_c(c);
-        const Vec3 v = loadVec3(s.v_c, c);
-        const double kinetic = 0.5 * m * dot(v, v);
-        acc.v[0] += m;
-        acc.v[1] += m * v.x;
-        acc.v[2] += m * v.y;
-        acc.v[3] += m * v.z;
-        acc.v[4] += kinetic;
-        acc.v[5] += m * s.E_c(c) - kinetic;
+      "lagremap::diagnostics::audit",
+      Kokkos::RangePolicy<ExecSpace>(0, n_cells > n_nodes ? n_cells : n_nodes),
+      KOKKOS_LAMBDA(const Index i, AuditSums& acc) {
+        if (i < n_cells && cell_owned(i)) {
+          const double m = s.m_c(i);
+          const Vec3 v = loadVec3(s.v_c, i);
+          const double kinetic = 0.5 * m * dot(v, v);
+          acc.v[0] += m;
+          acc.v[1] += m * v.x;
+          acc.v[2] += m * v.y;
+          acc.v[3] += m * v.z;
+          acc.v[4] += kinetic;
+          acc.v[5] += m * s.E_c(i) - kinetic;
+        }
+        if (i < n_nodes && node_owned(i)) {
+          const Vec3 f = loadVec3(s.f_ext_n, i);
+          acc.v[6] += f.x;
+          acc.v[7] += f.y;
+          acc.v[8] += f.z;
+          acc.v[9] += dot(f, loadVec3(s.v_n, i));
+        }
       },
-      Kokkos::Sum<SumArray<6>>(sums));
-  parallel::sum(sums.v, 6);
-  Totals totals;
-  totals.mass = sums.v[0];
-  totals.momentum = {sums.v[1], sums.v[2], sums.v[3]};
-  totals.kinetic = sums.v[4];
-  totals.internal = sums.v[5];
-  return totals;
+      Kokkos::Sum<AuditSums, ReportSpace>(into));
+}
+
+Audit auditOf(AuditSums sums) {
+  parallel::sum(sums.v, 10);
+  Audit audit;
+  audit.totals.mass = sums.v[0];
+  audit.totals.momentum = {sums.v[1], sums.v[2], sums.v[3]};
+  audit.totals.kinetic = sums.v[4];
+  audit.totals.internal = sums.v[5];
+  audit.boundary = {{sums.v[6], sums.v[7], sums.v[8]}, sums.v[9]};
+  return audit;
+}
+
+namespace {
+Audit waitedAudit(const Mesh& mesh, const State& state) {
+  const ReportView<AuditSums> sums("lagremap::diagnostics::audit");
+  sumAudit(mesh, state, sums);
+  fenceFor("lagremap::diagnostics: the audit");
+  return auditOf(sums());
+}
+}  // namespace
+
+Totals computeTotals(const Mesh& mesh, const State& state) {
+  return waitedAudit(mesh, state).totals;
 }
 
 BoundaryPower computeBoundaryPower(const Mesh& mesh, const State& state) {
-  const auto s = state;
-  const auto owned = mesh.node_owned;
-  SumArray<4> sums;
-  Kokkos::parallel_reduce(
-      "lagremap::diagnostics::boundary_power", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_nodes),
-      KOKKOS_LAMBDA(const Index n, SumArray<4>& acc) {
-        if (!owned(n)) return;
-        const Vec3 f = loadVec3(s.f_ext_n, n);
-        acc.v[0] += f.x;
-        acc.v[1] += f.y;
-        acc.v[2] += f.z;
-        acc.v[3] += dot(f, loadVec3(s.v_n, n));
-      },
-      Kokkos::Sum<SumArray<4>>(sums));
-  parallel::sum(sums.v, 4);
-  return {{sums.v[0], sums.v[1], sums.v[2]}, sums.v[3]};
+  return waitedAudit(mesh, state).boundary;
 }
 
 }  // namespace lagremap

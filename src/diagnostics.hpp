@@ -4,6 +4,7 @@
 
 #include "data/mesh.hpp"
 #include "data/state.hpp"
+#include "data/types.hpp"
 #include "kernels/sum_array.hpp"
 
 namespace lagremap {
@@ -15,14 +16,26 @@ struct Totals {
   double total() const { return kinetic + internal; }
 };
 
-// Mass, momentum, kinetic and internal energy of the cells.
-Totals computeTotals(const Mesh& mesh, const State& state);
-
 struct BoundaryPower {
   Vec3 force{0, 0, 0};  // sum over nodes of the external force (wall reactions, tractions)
   double power = 0.0;   // sum over nodes of f_ext . V
 };
-// From the last nodal solve (the corrector's, whose velocities moved the mesh).
+
+// Mass, momentum, kinetic and internal energy of the cells, waited for.
+Totals computeTotals(const Mesh& mesh, const State& state);
+// The boundary nodes' force and power from the last nodal solve (the
+// corrector's, whose velocities moved the mesh), waited for.
 BoundaryPower computeBoundaryPower(const Mesh& mesh, const State& state);
+
+// Both in one reduction over the cells and the nodes (a step's audit), this
+// rank's sums left in `into` without waiting; auditOf reads them after a
+// fence (collective: sums over the ranks).
+using AuditSums = SumArray<10>;
+struct Audit {
+  Totals totals;
+  BoundaryPower boundary;
+};
+void sumAudit(const Mesh& mesh, const State& state, const ReportView<AuditSums>& into);
+Audit auditOf(AuditSums sums);
 
 }  // namespace lagremap

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "data/types.hpp"
+#include "kokkos_events.hpp"
 
 namespace lagremap {
 
@@ -114,6 +115,7 @@ KokkosSession::KokkosSession(int& argc, char* argv[]) {
   // (--help says which is fastest), so a plain run stays quiet. Other Kokkos
   // warnings are silenced with it; setting OMP_PROC_BIND brings them back.
   if (std::getenv("OMP_PROC_BIND") == nullptr) setenv("KOKKOS_DISABLE_WARNINGS", "1", 0);
+  installKokkosEventCounter();  // (before Kokkos asks its tool settings)
   Kokkos::initialize(argc, argv);
   // (Kokkos moves the arguments it leaves up over those it removes: the
   // stand-ins are found by their address)

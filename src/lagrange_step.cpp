@@ -58,32 +58,47 @@ StepLimit LagrangeStep::overAllRanks(StepLimit limit) const {
   return parallel::minLoc(limit);
 }
 
-StepLimit LagrangeStep::computeGeometry() {
+void LagrangeStep::computeGeometry(const StepLimitView& into) {
   auto scope = timers_.scope(Phase::Geometry);
-  return overAllRanks(lagremap::computeGeometry(mesh_, state_, numerics_.step, numerics_.kernels));
+  lagremap::computeGeometry(mesh_, state_, numerics_.step, into, numerics_.kernels);
+}
+
+StepLimit LagrangeStep::computeGeometry() {
+  computeGeometry(own_report_.after_remap);
+  fenceFor("lagremap::lagrange: the geometry's step limit");
+  return overAllRanks(own_report_.after_remap());
+}
+
+void LagrangeStep::launch(double dt, const StepReport& report) {
+  saveStartOfStep();
+  if (numerics_.order == 1) return stage(dt, true, report.end_of_step);  // forward Euler
+  // predictor: nodal velocities of t^n carry the state to t^{n+1/2}
+  stage(0.5 * dt, false, report.predictor);
+  // corrector: forces and velocities of t^{n+1/2} carry t^n to t^{n+1} (an
+  // invalid half-step state is found when the host reads the report)
+  stage(dt, true, report.end_of_step);
 }
 
 StepLimit LagrangeStep::advance(double dt, long step) {
-  saveStartOfStep();
-  if (numerics_.order == 1) return stage(dt, true);  // forward Euler
-  // predictor: nodal velocities of t^n carry the state to t^{n+1/2}
-  const StepLimit half_step = stage(0.5 * dt, false);
-  if (half_step.val < 0.0) throw RunFailure(describeInvalidCell(half_step, step, "predictor"));
-  return stage(dt, true);  // corrector: forces and velocities of t^{n+1/2} carry t^n to t^{n+1}
+  launch(dt, own_report_);
+  fenceFor("lagremap::lagrange: the step's limits");
+  if (numerics_.order == 2) {
+    const StepLimit half_step = overAllRanks(own_report_.predictor());
+    if (half_step.val < 0.0) throw RunFailure(describeInvalidCell(half_step, step, "predictor"));
+  }
+  return overAllRanks(own_report_.end_of_step());
 }
 
 // One stage of the predictor-corrector (docs/method.md §1.1): its five
-// phases, each timed.
-StepLimit LagrangeStep::stage(double dt_stage, bool last_stage) {
+// phases, each timed; this rank's bound on the next dt (the smallest CFL and
+// volume-change candidate at the new positions, docs/method.md §2.7) left in `into`.
+void LagrangeStep::stage(double dt_stage, bool last_stage, const StepLimitView& into) {
   const StageEnd what = last_stage && remap_follows_ ? StageEnd::ForRemap : StageEnd::Full;
   computeCorners();
   solveNodesAndMove(dt_stage);
   completeGhostNodes(dt_stage);
-  const StepLimit limit = updateCells(dt_stage, what);
+  updateCells(dt_stage, what, into);
   completeOuterGhostCells(what);
-  // The next dt's bound: the smallest over every rank's cells of the CFL and
-  // volume-change candidates at the new positions (docs/method.md §2.7).
-  return overAllRanks(limit);
 }
 
 void LagrangeStep::computeCorners() {
@@ -107,9 +122,9 @@ void LagrangeStep::completeGhostNodes(double dt_stage) {
   moveGhostNodes(mesh_, state_, dt_stage);
 }
 
-StepLimit LagrangeStep::updateCells(double dt_stage, StageEnd what) {
+void LagrangeStep::updateCells(double dt_stage, StageEnd what, const StepLimitView& into) {
   auto scope = timers_.scope(Phase::CellUpdate);
-  return updateCellsAndGeometry(mesh_, state_, dt_stage, numerics_.step, what, numerics_.kernels);
+  updateCellsAndGeometry(mesh_, state_, dt_stage, numerics_.step, into, what, numerics_.kernels);
 }
 
 void LagrangeStep::completeOuterGhostCells(StageEnd what) {
@@ -130,32 +145,11 @@ void LagrangeStep::remapFollowsEveryStep() {
 void LagrangeStep::saveStartOfStep() {
   // (with a remap after every step the nodes start each step on the remap's
   // target, which x_n0 holds: RemapStep)
-  if (!nodes_start_on_target_) Kokkos::deep_copy(state_.x_n0, mesh_.x_n);
-  Kokkos::deep_copy(state_.v_c0, state_.v_c);
-  Kokkos::deep_copy(state_.E_c0, state_.E_c);
-  Kokkos::deep_copy(state_.e_ck0, state_.e_ck);
-  if (state_.n_materials > 1) {  // mixed cells share volume changes by compressibility
-    Kokkos::deep_copy(state_.alpha_ck0, state_.alpha_ck);
-    Kokkos::deep_copy(state_.w_ck0, state_.w_ck);
-    Kokkos::deep_copy(state_.p_ck0, state_.p_ck);
-    Kokkos::deep_copy(state_.vol_c0, state_.vol_c);
-  }
-  if (state_.has_solids) {  // fluids-only runs have no deviator or B to carry
-    copySolidDeviators(state_.S_ck0, state_.S_ck, state_.eps_ck0, state_.eps_ck, solid_materials_);
-    if (state_.has_neo_hookean) Kokkos::deep_copy(state_.B_ck0, state_.B_ck);
-  }
+  copyStepStart(state_, mesh_.x_n, StepStart::Save, solid_materials_, !nodes_start_on_target_);
 }
 
 void LagrangeStep::restoreStartOfStep() {
-  Kokkos::deep_copy(mesh_.x_n, state_.x_n0);
-  Kokkos::deep_copy(state_.v_c, state_.v_c0);
-  Kokkos::deep_copy(state_.E_c, state_.E_c0);
-  Kokkos::deep_copy(state_.e_ck, state_.e_ck0);
-  if (state_.n_materials > 1) Kokkos::deep_copy(state_.alpha_ck, state_.alpha_ck0);
-  if (state_.has_solids) {
-    copySolidDeviators(state_.S_ck, state_.S_ck0, state_.eps_ck, state_.eps_ck0, solid_materials_);
-    if (state_.has_neo_hookean) Kokkos::deep_copy(state_.B_ck, state_.B_ck0);
-  }
+  copyStepStart(state_, mesh_.x_n, StepStart::Restore, solid_materials_, true);
   computeGeometry();
 }
 

@@ -13,6 +13,7 @@
 #include "decomposition.hpp"
 #include "kernels/corner_controls.hpp"
 #include "kernels/geometry.hpp"
+#include "step_report.hpp"
 #include "timers.hpp"
 
 namespace lagremap {
@@ -48,13 +49,23 @@ class LagrangeStep {
   LagrangeStep(Mesh& mesh, State& state, const Numerics& numerics, PhaseTimers& timers,
                const Halo* halo = nullptr);
 
-  // Geometry and thermodynamics of the current node positions; returns the
-  // time-step candidate (negative for an invalid cell).
+  // Geometry and thermodynamics of the current node positions; the
+  // time-step candidate (negative for an invalid cell) of this rank's cells
+  // left in `into` without waiting.
+  void computeGeometry(const StepLimitView& into);
+  // The same, waited for: the candidate over every rank.
   StepLimit computeGeometry();
-  // One step t^n -> t^{n+1} from a state whose geometry is current; returns
-  // the time-step candidate of t^{n+1} (negative for an invalid cell). Throws
-  // RunFailure if the half-step state is invalid; the start-of-step copy is kept.
+  // One step t^n -> t^{n+1} from a state whose geometry is current, without
+  // waiting: this rank's time-step candidates of the half-step state (second
+  // order) and of t^{n+1} land in report.predictor and report.end_of_step
+  // (negative for an invalid cell); the start-of-step copy is kept.
+  void launch(double dt, const StepReport& report);
+  // The same, waited for: throws RunFailure if the half-step state is
+  // invalid; returns the candidate of t^{n+1} over every rank.
   StepLimit advance(double dt, long step);
+  // The smallest candidate over every rank's owned cells, located by global
+  // cell id (collective), of one this rank's kernels left.
+  StepLimit overAllRanks(StepLimit limit) const;
   // Puts back the state of the start of the last step (the last good state).
   void restoreStartOfStep();
   // Copies the current state as the start of a step.
@@ -75,8 +86,8 @@ class LagrangeStep {
  private:
   // Corner terms, nodal solve, then cell update and geometry at the new
   // positions (StageEnd::ForRemap for the last stage of a step that the remap
-  // follows); returns the next dt's bound over all ranks.
-  StepLimit stage(double dt_stage, bool last_stage);
+  // follows); this rank's bound on the next dt left in `into`.
+  void stage(double dt_stage, bool last_stage, const StepLimitView& into);
   // The reconstruction's order and the node gather, as the corner terms and
   // the node solve read them.
   CornerControls cornerControls() const { return {numerics_.order, numerics_.gather}; }
@@ -89,11 +100,9 @@ class LagrangeStep {
   void completeGhostNodes(double dt_stage);
   // 4. cell velocities, energies, materials and geometry at the new positions,
   //    with this rank's time-step candidate;
-  StepLimit updateCells(double dt_stage, StageEnd what);
+  void updateCells(double dt_stage, StageEnd what, const StepLimitView& into);
   // 5. the outer ghost layer's cells from their owners (a decomposed run).
   void completeOuterGhostCells(StageEnd what);
-  // The smallest candidate over every rank's owned cells, located by global cell id.
-  StepLimit overAllRanks(StepLimit limit) const;
 
   Mesh& mesh_;
   State& state_;
@@ -106,6 +115,8 @@ class LagrangeStep {
   unsigned solid_materials_ = 0;
   // The staged form's per-cell rows of the corner terms (empty: fused).
   MatRealView corner_rows_;
+  // Where advance() and computeGeometry() wait for their candidates.
+  StepReport own_report_;
   // The halo's lists (src/fields.hpp), made once: the Views they name are
   // the state's for the whole run.
   std::vector<FieldRef> node_fields_, stage_end_fields_, stage_end_fields_for_remap_;

@@ -15,6 +15,7 @@
 #include "mesh_setup.hpp"
 #include "parallel.hpp"
 #include "state_setup.hpp"
+#include "step_report.hpp"
 
 namespace lagremap {
 
@@ -162,6 +163,22 @@ struct FinalFields {
   std::vector<std::pair<double, double>> probe;
 };
 
+// A number a problem measures after every step. `sample` launches its
+// reductions into the step report's slots without waiting (the step's one
+// host synchronisation, docs/performance.md §8, reads them); after the fence
+// `value` makes the number of them (collective: it reduces over the ranks; a
+// probe of several dependent passes launches and waits for the later ones here).
+// `name`: probe.csv's column.
+struct Probe {
+  void (*sample)(const Mesh& mesh, const State& state, const ProbeSlots& slots) = nullptr;
+  double (*value)(const Mesh& mesh, const State& state, const ProbeSlots& slots) = nullptr;
+  const char* name = nullptr;
+
+  explicit operator bool() const { return sample != nullptr; }
+  // Sampled and waited for (the set-up's first entry).
+  double measure(const Mesh& mesh, const State& state) const;
+};
+
 struct Problem {
   const char* name;
   const char* description;
@@ -174,9 +191,8 @@ struct Problem {
   ProblemResults (*finish)(const Config& config, const FinalFields& fields,
                            const std::string& out_dir);
   // Optional: a number measured after every step (e.g. a wall stress), kept
-  // in FinalFields::probe and written to probe.csv with this column name.
-  double (*probe)(const Mesh& mesh, const State& state) = nullptr;
-  const char* probe_name = nullptr;
+  // in FinalFields::probe and written to probe.csv (Probe).
+  Probe probe = {};
   // Snapshot times when the command line gives none (docs/verification.md §8), those up to t_end.
   std::vector<double> default_output_times = {};
   // Why the mixed_cells check (src/mixed_cells.hpp) does not apply to this
@@ -292,14 +308,29 @@ void writeCellOutlines(const std::string& path, const FinalFields& fields);
 // on the row of cells nearest to the line y = y_line, z = mid-thickness
 // (linear interpolation between cell centroids), or NAN if it never does.
 double materialFrontX(const FinalFields& fields, int material, double y_line);
-// A bar's or rod's length from material 0's volume in the row of cells along
+// Probes' reductions (Probe::sample), left in the slots without waiting:
+// a bar's or rod's length from material 0's volume in the row of cells along
 // the x axis (those with a side on y = 0, and on z = 0 when z_axis_too), over
-// each cell's cross-section, sum alpha v / (dy dz): a smooth measure, summed
-// over the ranks. `label`: the kernel's.
-double materialLengthAlongAxis(const char* label, const Mesh& mesh, const State& state,
-                               bool z_axis_too);
-// The largest node x over the ranks (a body on the wall x = 0: its length).
-double largestNodeX(const char* label, const Mesh& mesh);
+// each cell's cross-section, sum alpha v / (dy dz), a smooth measure (this
+// rank's sum in slots.scalar); the largest node x (this rank's in
+// slots.scalar: a body on the wall x = 0, its length); the mean over the
+// cells with a face on `side` of sigma_xx = -p + S_xx or of the centroid's
+// coordinate `axis` (this rank's sum and count in slots.sums). `label`: the
+// kernel's.
+void sampleMaterialLengthAlongAxis(const char* label, const Mesh& mesh, const State& state,
+                                   bool z_axis_too, const ProbeSlots& slots);
+void sampleLargestNodeX(const char* label, const Mesh& mesh, const ProbeSlots& slots);
+void sampleSideMeanStressXX(const Mesh& mesh, const State& state, int side,
+                            const ProbeSlots& slots);
+void sampleSideMeanCentroid(const Mesh& mesh, const State& state, int side, int axis,
+                            const ProbeSlots& slots);
+// After the fence, over every rank (collective): the sum of slots.scalar, its
+// largest, and the mean of slots.sums (sum over count; 0 with no cell).
+double sumOverRanks(const ProbeSlots& slots);
+double largestOverRanks(const ProbeSlots& slots);
+double meanOverRanks(const ProbeSlots& slots);
+// A ratio of the slots.sums over every rank, v[1] / v[0] (a centroid).
+double ratioOverRanks(const ProbeSlots& slots);
 // The outermost place where a volume fraction falls through 1/2 along a row
 // of cells: `mine` holds this rank's (coordinate, alpha) pairs, gathered
 // from every rank (collective with distributed fields), sorted, and the last

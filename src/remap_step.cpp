@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "kokkos_events.hpp"
 #include "parallel.hpp"
 #include "state_setup.hpp"
 
@@ -65,42 +66,49 @@ RemapStep::RemapStep(Mesh& mesh, State& state, const RemapControls& controls, Ph
   carveCornerArrays(state, n_cells, corners);
   fields_ = carveRemapFields(n_cells, layout_, controls.kernels, work);
   swept_ = carveSweptFaces(mesh, work);
-  m_ck_saved_ = MatRealView("lagremap::remap::m_ck_saved", n_cells, state.n_materials);
+  state.m_ck0 = MatRealView("lagremap::state::m_ck0", n_cells, state.n_materials);
   if (halo_) remapped_fields_ = remappedCellFields(state);
 }
 
-RemapBoundaryFlux RemapStep::apply(const Vec3View& target) {
-  RemapBoundaryFlux crossed;
+void RemapStep::launch(const Vec3View& target, const ReportView<RemapBoundaryFlux>& crossed) {
   {
     auto scope = timers_.scope(Phase::Remap);
-    Kokkos::deep_copy(m_ck_saved_, state_.m_ck);
     remapDensities(state_, layout_, fields_);
     remapGradients(mesh_, state_, layout_, controls_, fields_);
     if (!controls_.reconstruct) Kokkos::deep_copy(fields_.gradient, 0.0);
     computeSweptFaces(mesh_, mesh_.x_n, target, swept_, controls_.kernels);
-    crossed = remapUpdate(mesh_, state_, layout_, controls_, fields_, swept_);
-    Kokkos::deep_copy(mesh_.x_n, target);
+    remapUpdate(mesh_, state_, layout_, controls_, fields_, swept_, crossed);
+    moveNodesTo(mesh_.x_n, target);
   }
   if (halo_) {  // ghost cells: their owners' remapped state (docs/method.md §7.4, src/fields.hpp)
     auto scope = timers_.scope(Phase::Halo);
     halo_->exchangeCells(remapped_fields_);
   }
+}
+
+RemapBoundaryFlux RemapStep::apply(const Vec3View& target) {
+  launch(target, crossed_);
+  fenceFor("lagremap::remap: the boundary crossings");
+  RemapBoundaryFlux crossed = crossed_();
   parallel::sum(crossed.v, 5);
   return crossed;
 }
 
 void RemapStep::restoreStartOfStep() {
-  Kokkos::deep_copy(state_.m_ck, m_ck_saved_);
   // a cell's mass is the sum of its materials' in every state (the set-up's,
   // the remap's, storeRemappedCell): the same sum gives the same bits
   const auto m_c = state_.m_c;
   const auto m_ck = state_.m_ck;
+  const auto m_ck0 = state_.m_ck0;
   const int n_materials = state_.n_materials;
   Kokkos::parallel_for(
-      "lagremap::remap::restore_cell_masses", Kokkos::RangePolicy<ExecSpace>(0, m_c.extent(0)),
+      "lagremap::remap::restore_masses", Kokkos::RangePolicy<ExecSpace>(0, m_c.extent(0)),
       KOKKOS_LAMBDA(const Index c) {
         double mass = 0.0;
-        for (int k = 0; k < n_materials; ++k) mass += m_ck(c, k);
+        for (int k = 0; k < n_materials; ++k) {
+          m_ck(c, k) = m_ck0(c, k);
+          mass += m_ck(c, k);
+        }
         m_c(c) = mass;
       });
 }

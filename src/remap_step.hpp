@@ -10,6 +10,7 @@
 #include "decomposition.hpp"
 #include "kernels/geometry.hpp"
 #include "kernels/remap.hpp"
+#include "step_report.hpp"
 #include "timers.hpp"
 
 namespace lagremap {
@@ -29,18 +30,20 @@ class RemapStep {
   RemapStep(Mesh& mesh, State& state, const RemapControls& controls, PhaseTimers& timers,
             const Halo* halo = nullptr);
 
-  // Remaps the state of the Lagrangian mesh onto the target mesh and moves the
-  // mesh back; returns what crossed the outer boundary (mass, momentum,
-  // total energy). The geometry of the state is stale afterwards.
+  // Remaps the state of the Lagrangian mesh onto `target` and moves the mesh
+  // there, without waiting: what crossed this rank's outer boundary (mass,
+  // momentum, total energy) is left in `crossed`. The target is the initial
+  // mesh (State::x_n0) or another of the same connectivity, a small
+  // displacement from the Lagrangian one (ALE mode's relaxed mesh,
+  // src/mesh_relaxation.hpp). The geometry of the state is stale afterwards.
+  void launch(const Vec3View& target, const ReportView<RemapBoundaryFlux>& crossed);
+  void launch(const ReportView<RemapBoundaryFlux>& crossed) { launch(state_.x_n0, crossed); }
+  // The same, waited for: returns what crossed every rank's outer boundary.
   RemapBoundaryFlux apply() { return apply(state_.x_n0); }
-  // The same onto another mesh of the same connectivity, a small displacement
-  // from the Lagrangian one (ALE mode's relaxed mesh, src/mesh_relaxation.hpp),
-  // where the mesh then stays.
   RemapBoundaryFlux apply(const Vec3View& target);
-  // Puts back the masses of the start of the last apply(), which the
-  // Lagrangian step does not change and so does not keep (its
-  // restoreStartOfStep puts back the rest of the state, volume fractions
-  // included).
+  // Puts back the masses of the start of the step (State::m_ck0, which the
+  // Lagrangian step saves but does not put back: its restoreStartOfStep puts
+  // back the rest of the state, volume fractions included).
   void restoreStartOfStep();
 
   const RemapLayout& layout() const { return layout_; }
@@ -57,7 +60,7 @@ class RemapStep {
   RealView shared_work_;
   RemapFields fields_;
   SweptFaces swept_;
-  MatRealView m_ck_saved_;
+  ReportView<RemapBoundaryFlux> crossed_{"lagremap::remap::crossed"};  // apply()'s
   std::vector<FieldRef> remapped_fields_;  // the halo's list, made once (src/fields.hpp)
 };
 

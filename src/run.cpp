@@ -167,6 +167,8 @@ RunResult resultOf(const Simulation& simulation) {
   result.failure = simulation.failure();
   result.stopped_by = simulation.stoppedBy();
   result.steps = simulation.step();
+  result.step_events = simulation.stepEvents();
+  result.events_counted = kokkosEventsCounted();
   result.time = simulation.time();
   const long steps_run = simulation.step() - simulation.startState().step;  // a restart continues
   result.cell_steps_per_second =
@@ -197,7 +199,7 @@ RunResult resultOf(const Simulation& simulation) {
 
 void writeProbe(const std::string& path, const Problem& problem, const FinalFields& fields) {
   std::ostringstream probe_csv;
-  probe_csv << "t," << problem.probe_name << '\n' << std::setprecision(12);
+  probe_csv << "t," << problem.probe.name << '\n' << std::setprecision(12);
   for (const auto& [time, value] : fields.probe) probe_csv << time << ',' << value << '\n';
   writeTextFile(path, probe_csv.str());
 }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "input/config.hpp"
+#include "kokkos_events.hpp"
 #include "mixed_cells.hpp"
 #include "problem.hpp"
 #include "resources.hpp"
@@ -23,6 +24,7 @@ struct RunOptions {
   std::vector<double> output_times;  // snapshot times (besides the first and last state)
   long output_every = 0;             // snapshot every N steps (0: never)
   bool quiet = false;                // no progress line
+  bool profile_phases = false;       // the phase timers fence (src/timers.hpp)
   bool write_files = true;           // false: no output directory at all (benchmarks, tests)
   long checkpoint_every = 0;         // checkpoint.h5 in the output directory every N steps
   std::string restart_file;          // continue the run of this checkpoint
@@ -60,6 +62,10 @@ struct RunResult {
   // mixed_cells check where a material is condensed).
   std::optional<MixedCellReport> mixed_cells;
   RankCosts costs;  // memory, set-up time and halo traffic over the ranks
+  // What the steps asked of the device (src/kokkos_events.hpp); counted:
+  // the program's counter saw them (no other Kokkos tool took its place).
+  StepEvents step_events;
+  bool events_counted = false;
   bool checksPass() const;
 };
 

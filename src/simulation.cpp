@@ -8,6 +8,7 @@
 
 #include "diagnostics.hpp"
 #include "kernels/mesh_quality.hpp"
+#include "kokkos_events.hpp"
 #include "parallel.hpp"
 #include "setup.hpp"
 #include "stop_signals.hpp"
@@ -68,6 +69,7 @@ Simulation::Simulation(const RunOptions& options, const Problem& problem)
       numerics_(readNumerics(options.config)),
       t_end_(options.config.real("t_end")) {
   const Config& config = options.config;
+  timers_.fenceEachPhase(options.profile_phases);
   checkMemoryFits(config);
   Kokkos::Timer phase;
   // (each rank builds its own part: an error in one is every rank's)
@@ -128,7 +130,7 @@ Simulation::Simulation(const RunOptions& options, const Problem& problem)
     }
     lagrange_->saveStartOfStep();
   } else {
-    if (problem.probe) loop_.probe.emplace_back(0.0, problem.probe(mesh, state_));
+    if (problem.probe) loop_.probe.emplace_back(0.0, problem.probe.measure(mesh, state_));
     loop_.initial = computeTotals(mesh, state_);
   }
   totals_ = loop_.initial;
@@ -150,8 +152,10 @@ void Simulation::run() {
     const TimeStepChoice choice = chooseTimeStep();
     failure_ = stopReason(choice);
     if (failed()) break;
+    const KokkosEventCounts before = kokkosEventCounts();
     try {
       advance(choice);
+      step_events_.add(kokkosEventCounts() - before);
     } catch (const RunFailure& failure) {
       lagrange_->restoreStartOfStep();
       failure_ = failure.what();
@@ -241,20 +245,23 @@ void Simulation::advance(const TimeStepChoice& choice) {
   if (relaxation_) lagrange_->remapFollowsNextStep(remaps);
   // Lagrangian phase: predictor and corrector (docs/method.md §A5), with the next
   // step's time-step candidates
-  limit_ = lagrange_->advance(choice.dt, next);
-  if (limit_.val < 0.0) throw RunFailure(describeInvalidCell(limit_, next, "end of step"));
-  RemapBoundaryFlux crossed;
+  lagrange_->launch(choice.dt, report_);
   if (remaps) {
     // remap onto the initial mesh (docs/method.md §A9), or in ALE mode onto the
     // relaxed one (§8): densities, gradients, swept regions, fluxes, energy
     // fix; then the time step of the remapped state
-    crossed = relaxation_ ? remap_->apply(relaxation_->target()) : remap_->apply();
-    limit_ = lagrange_->computeGeometry();
-    if (limit_.val < 0.0) {
-      remap_->restoreStartOfStep();
-      throw RunFailure(describeInvalidCell(limit_, next, "after the remap"));
+    if (relaxation_) {
+      remap_->launch(relaxation_->target(), report_.crossed);
+    } else {
+      remap_->launch(report_.crossed);
     }
+    lagrange_->computeGeometry(report_.after_remap);
   }
+  launchDiagnostics(remaps);
+  // The step's one host synchronisation: its kernels have left their time-step
+  // candidates, boundary crossings and diagnostics in the report.
+  fenceFor("lagremap::step: the step's report");
+  limit_ = checkedStepLimit(next, remaps);
   loop_.time = choice.lands_on_end() ? t_end_ : loop_.time + choice.dt;
   loop_.dt_prev = choice.dt;
   // (from the first step on: the set-up's candidate has no volume-rate limit
@@ -265,26 +272,61 @@ void Simulation::advance(const TimeStepChoice& choice) {
     loop_.time = pending_outputs_.front();
     pending_outputs_.erase(pending_outputs_.begin());
   }
-  diagnose(choice.dt, crossed, remaps);
+  diagnose(choice.dt, remaps);
 }
 
-void Simulation::diagnose(double dt, const RemapBoundaryFlux& crossed, bool remapped) {
+StepLimit Simulation::checkedStepLimit(long step, bool remapped) {
+  const auto fail = [&](const StepLimit& limit, const char* when) {
+    if (remapped) remap_->restoreStartOfStep();  // (the caller restores the rest)
+    throw RunFailure(describeInvalidCell(limit, step, when));
+  };
+  if (numerics_.order == 2) {
+    const StepLimit half_step = lagrange_->overAllRanks(report_.predictor());
+    if (half_step.val < 0.0) fail(half_step, "predictor");
+  }
+  const StepLimit end = lagrange_->overAllRanks(report_.end_of_step());
+  if (end.val < 0.0) fail(end, "end of step");
+  if (!remapped) return end;
+  const StepLimit after = lagrange_->overAllRanks(report_.after_remap());
+  if (after.val < 0.0) fail(after, "after the remap");
+  return after;
+}
+
+void Simulation::launchDiagnostics(bool remapped) {
   auto scope = timers_.scope(Phase::Diagnostics);
-  const BoundaryPower boundary = computeBoundaryPower(setup_.mesh, state_);
+  sumAudit(setup_.mesh, state_, report_.audit);
+  // (remap mode: the initial mesh again, the quality the set-up measured; ALE
+  // mode: the relaxation's guard measured its target)
+  if (!remapped) smallestScaledJacobian(setup_.mesh, setup_.mesh.x_n, report_.mesh_quality);
+  if (problem_.probe) problem_.probe.sample(setup_.mesh, state_, report_.probe);
+}
+
+void Simulation::diagnose(double dt, bool remapped) {
+  const Audit audit = auditOf(report_.audit());
+  const BoundaryPower& boundary = audit.boundary;
+  RemapBoundaryFlux crossed;
+  if (remapped) {
+    crossed = report_.crossed();
+    parallel::sum(crossed.v, 5);
+  }
   loop_.impulse += dt * boundary.force + Vec3{crossed.v[1], crossed.v[2], crossed.v[3]};
   loop_.work += dt * boundary.power + crossed.v[4];
   loop_.mass_in += crossed.v[0];
-  totals_ = computeTotals(setup_.mesh, state_);
+  totals_ = audit.totals;
   if (remapped && relaxation_) {
-    noteMeshQuality(relaxation_->targetQuality());  // (the guard's last pass measured it)
+    noteMeshQuality(relaxation_->targetQuality());
   } else if (!remapped) {
-    noteMeshQuality(measuredMeshQuality());
-  }  // (remap mode: the initial mesh again, the quality the set-up measured)
-  if (problem_.probe) loop_.probe.emplace_back(loop_.time, problem_.probe(setup_.mesh, state_));
+    noteMeshQuality(parallel::min(meshQualityOf(report_.mesh_quality())));
+  }
+  if (problem_.probe) {
+    loop_.probe.emplace_back(loop_.time, problem_.probe.value(setup_.mesh, state_, report_.probe));
+  }
 }
 
 double Simulation::measuredMeshQuality() const {
-  return parallel::min(smallestScaledJacobian(setup_.mesh, setup_.mesh.x_n));
+  smallestScaledJacobian(setup_.mesh, setup_.mesh.x_n, report_.mesh_quality);
+  fenceFor("lagremap::mesh_quality: the smallest scaled Jacobian");
+  return parallel::min(meshQualityOf(report_.mesh_quality()));
 }
 
 void Simulation::noteMeshQuality(double quality) {

@@ -12,11 +12,13 @@
 #include <vector>
 
 #include "checkpoint.hpp"
+#include "kokkos_events.hpp"
 #include "lagrange_step.hpp"
 #include "mesh_relaxation.hpp"
 #include "problem.hpp"
 #include "remap_step.hpp"
 #include "run.hpp"
+#include "step_report.hpp"
 #include "timers.hpp"
 
 namespace lagremap {
@@ -85,10 +87,11 @@ class Simulation {
   const SetupSeconds& setupSeconds() const { return setup_seconds_; }
   long setupPeakBytes() const { return setup_peak_bytes_; }
   const Halo* halo() const { return halo_.get(); }  // null on one rank
-  // Collective reductions the time loop took (parallel::reductionCount).
+  // Collective reductions the time loop took (parallel::reductionCount), and
+  // what its steps (this process's, outputs aside) asked of the device.
   long loopReductions() const { return loop_reductions_; }
-  // Relative drifts of mass, momentum and total energy, what the boundaries
-  // (and the remap's outer faces) put in subtracted.
+  const StepEvents& stepEvents() const { return step_events_; }
+  // Relative drifts of mass, momentum and total energy, less what came in.
   double driftMass() const;
   double driftMomentum() const;
   double driftEnergy() const;
@@ -101,13 +104,17 @@ class Simulation {
   std::string stopReason(const TimeStepChoice& choice) const;
   // Throws ConfigError when a fresh run's first step is below numerics.dt_min.
   void refuseAFirstStepBelowTheFloor() const;
-  // One step of Fig. 2; throws RunFailure with the start-of-step state restored.
+  // One step of Fig. 2, launched, then waited for once; RunFailure: the caller
+  // restores the start. checkedStepLimit: its dt candidate over every rank
+  // (an invalid state throws, the remap's part of the state restored).
   void advance(const TimeStepChoice& choice);
-  // Boundary impulse and work of the step, the totals, the mesh quality, the
-  // probe; `remapped`: the step ended with a remap.
-  void diagnose(double dt, const RemapBoundaryFlux& crossed, bool remapped);
-  // The smallest scaled Jacobian of the present mesh (every rank's cells),
-  // and its record as the present and the run's lowest.
+  StepLimit checkedStepLimit(long step, bool remapped);
+  // The diagnostics' reductions into the report, then read: boundary work,
+  // totals, mesh quality, probe (`remapped`: the step ended with a remap).
+  void launchDiagnostics(bool remapped);
+  void diagnose(double dt, bool remapped);
+  // The smallest scaled Jacobian of the present mesh (every rank's cells);
+  // its record as the present and the run's lowest.
   double measuredMeshQuality() const;
   void noteMeshQuality(double quality);
   double energyScale() const;  // of the drifts
@@ -129,6 +136,8 @@ class Simulation {
   SetupSeconds setup_seconds_;
   long setup_peak_bytes_ = 0;
   long loop_reductions_ = 0;
+  mutable StepReport report_;  // what a step's kernels leave for the host
+  StepEvents step_events_;
   std::vector<double> pending_outputs_;  // snapshot times still ahead, sorted, each once
   Totals totals_;
   double mesh_quality_ = 1.0;

@@ -4,12 +4,35 @@
 
 #include "json.hpp"
 #include "kernels/hex.hpp"
+#include "kokkos_events.hpp"
 #include "kokkos_session.hpp"
 #include "outputs.hpp"
 #include "parallel.hpp"
 
 namespace lagremap {
 namespace {
+
+// What a step asked of the device (src/kokkos_events.hpp): on average and
+// at most in one step.
+void writeStepEvents(JsonWriter& json, const StepEvents& events) {
+  const double per_step = events.steps > 0 ? 1.0 / double(events.steps) : 0.0;
+  const auto counts = [&](const char* name, const KokkosEventCounts& counts, double scale) {
+    json.beginObject(name)
+        .value("launches", double(counts.launches) * scale)
+        .value("deep_copies", double(counts.deep_copies) * scale)
+        .value("copied_bytes", double(counts.copied_bytes) * scale)
+        .value("host_syncs", double(counts.host_syncs) * scale)
+        .endObject();
+  };
+  json.beginObject("device_events").value("counted", kokkosEventsCounted());
+  counts("per_step", events.total, per_step);
+  counts("most_in_a_step", events.most, 1.0);
+  json.value("note",
+             "Kokkos kernel launches, deep copies and host synchronisations (a fence or copy "
+             "with device work outstanding) of the time loop's steps, outputs aside; counted "
+             "false: another Kokkos tool took the callbacks")
+      .endObject();
+}
 
 void writeRunAndSpeed(JsonWriter& json, const Simulation& simulation, const RunResult& result) {
   const Config& config = simulation.options().config;
@@ -34,6 +57,7 @@ void writeRunAndSpeed(JsonWriter& json, const Simulation& simulation, const RunR
                                          : "completed");
   if (result.failed) json.value("failure", result.failure);
   json.value("wall_seconds", result.wall_seconds);
+  writeStepEvents(json, simulation.stepEvents());
   const PhaseTimers& timers = simulation.timers();
   json.beginObject("cell_steps_per_second").value("total", result.cell_steps_per_second);
   json.beginObject("phases");

@@ -232,8 +232,10 @@ TEST(Remap, StageEndForRemapLeavesWhatTheRemapReadsBitForBit) {
   const Index node = cell_nodes(0, 6), opposite = cell_nodes(0, 0);
   storeVec3(x, node, loadVec3(x, opposite) - 0.5 * (loadVec3(x, node) - loadVec3(x, opposite)));
   Kokkos::deep_copy(mesh.x_n, x);
-  const StepLimit tangled =
-      updateCellsAndGeometry(mesh, for_remap.state, 0.0, numerics.step, StageEnd::ForRemap);
+  const StepLimitView limit("tangled");
+  updateCellsAndGeometry(mesh, for_remap.state, 0.0, numerics.step, limit, StageEnd::ForRemap);
+  Kokkos::fence();
+  const StepLimit tangled = limit();
   EXPECT_LT(tangled.val, 0.0);
   EXPECT_EQ(tangled.loc % kLimitCodes, int(kBadVolume));
 }
