@@ -47,9 +47,12 @@ struct Mesh {
   // the other (and mirrors its external force). node_twin_source(n): the
   // node whose solution n takes (n itself if n is solved); node_twin_flip(n):
   // the axes (bit 0 x, 1 y, 2 z) its external force is mirrored across.
-  // Empty when the mesh has no twins.
+  // node_twins, from node_twin_offsets(n) to node_twin_offsets(n + 1): the
+  // nodes that take n's solution (its thread writes theirs: no second
+  // kernel). Empty when the mesh has no twins.
   IndexView node_twin_source;
   DeviceView<int*> node_twin_flip;
+  IndexView node_twin_offsets, node_twins;
   // Every cell is a right prism along z, at all times (hex::prismGeometry):
   // a one-cell slab between two z wall/symmetry planes (its z twins share x
   // and y, its nodes have no z velocity), whose bottom nodes lie on one z

@@ -117,6 +117,8 @@ static inline void nodalSolve(const Mesh& mesh, const State& state, const Corner
   const auto x_n = mesh.x_n;
   const auto twin_source = mesh.node_twin_source;
   const auto twin_flip = mesh.node_twin_flip;
+  const auto twin_offsets = mesh.node_twin_offsets;
+  const auto node_twins = mesh.node_twins;
   const bool twins = twin_source.extent(0) > 0;
   const auto s = state;
   const bool atomics = controls.gather == Gather::Atomics;
@@ -128,7 +130,7 @@ static inline void nodalSolve(const Mesh& mesh, const State& state, const Corner
           detail::prefetchCornerRecords(s, node_solve_order, node_corner_offsets, node_corners,
                                         twin_source, visit);
         }
-        if (twins && twin_source(n) != n) return;  // its twin's solution (below)
+        if (twins && twin_source(n) != n) return;  // its source writes its solution (below)
         SymMat3 impedance = identitySym(0.0);
         Vec3 rhs{0, 0, 0};
         if (atomics) {
@@ -184,26 +186,22 @@ static inline void nodalSolve(const Mesh& mesh, const State& state, const Corner
         storeVec3(s.v_n, n, velocity);
         // External force on the node (sum_c F_cp up to round-off): wall reaction
         // plus traction load, for the conservation audit.
-        storeVec3(s.f_ext_n, n, reaction + load);
+        const Vec3 force = reaction + load;
+        storeVec3(s.f_ext_n, n, force);
         storeVec3(s.x_n_next, n, loadVec3(s.x_n0, n) + dt_stage * velocity);
-      });
-  if (!twins) return;
-  // A slab's or bar's twin nodes (Mesh::node_twin_source): the velocity of
-  // the node they mirror (its components normal to the planes are zero) and
-  // its external force mirrored.
-  Kokkos::parallel_for(
-      "lagremap::nodal_solve::twins", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_nodes),
-      KOKKOS_LAMBDA(const Index n) {
-        const Index source = twin_source(n);
-        if (source == n) return;
-        const Vec3 velocity = loadVec3(s.v_n, source);
-        const Vec3 force = loadVec3(s.f_ext_n, source);
-        const int flip = twin_flip(n);
-        storeVec3(s.v_n, n, velocity);
-        storeVec3(s.f_ext_n, n,
-                  Vec3{flip & 1 ? -force.x : force.x, flip & 2 ? -force.y : force.y,
-                       flip & 4 ? -force.z : force.z});
-        storeVec3(s.x_n_next, n, loadVec3(s.x_n0, n) + dt_stage * velocity);
+        if (!twins) return;
+        // A slab's or bar's twin nodes (Mesh::node_twins): this node's
+        // velocity (its components normal to the planes are zero) and its
+        // external force mirrored.
+        for (Index i = twin_offsets(n); i < twin_offsets(n + 1); ++i) {
+          const Index twin = node_twins(i);
+          const int flip = twin_flip(twin);
+          storeVec3(s.v_n, twin, velocity);
+          storeVec3(s.f_ext_n, twin,
+                    Vec3{flip & 1 ? -force.x : force.x, flip & 2 ? -force.y : force.y,
+                         flip & 4 ? -force.z : force.z});
+          storeVec3(s.x_n_next, twin, loadVec3(s.x_n0, twin) + dt_stage * velocity);
+        }
       });
 }
 

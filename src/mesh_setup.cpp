@@ -392,9 +392,25 @@ void findNodeTwins(Mesh& mesh) {
   if (!any) {
     mesh.node_twin_source = IndexView();
     mesh.node_twin_flip = DeviceView<int*>();
+    mesh.node_twin_offsets = IndexView();
+    mesh.node_twins = IndexView();
     return;
   }
   mesh.node_twin_source = uploadList("lagremap::mesh::node_twin_source", source);
+  // each source's twins (CRS, in node order)
+  std::vector<Index> offsets(std::size_t(mesh.n_nodes) + 1, 0), twins;
+  for (Index n = 0; n < mesh.n_nodes; ++n) {
+    if (source[std::size_t(n)] != n) ++offsets[std::size_t(source[std::size_t(n)]) + 1];
+  }
+  for (std::size_t n = 0; n < std::size_t(mesh.n_nodes); ++n) offsets[n + 1] += offsets[n];
+  twins.resize(std::size_t(offsets.back()));
+  std::vector<Index> filled(offsets.begin(), offsets.end() - 1);
+  for (Index n = 0; n < mesh.n_nodes; ++n) {
+    const Index s = source[std::size_t(n)];
+    if (s != n) twins[std::size_t(filled[std::size_t(s)]++)] = n;
+  }
+  mesh.node_twin_offsets = uploadList("lagremap::mesh::node_twin_offsets", offsets);
+  mesh.node_twins = uploadList("lagremap::mesh::node_twins", twins);
   Kokkos::View<int*, HostSpace> flip_host("lagremap::mesh::node_twin_flip", flip.size());
   for (std::size_t n = 0; n < flip.size(); ++n) flip_host(n) = flip[n];
   mesh.node_twin_flip = DeviceView<int*>("lagremap::mesh::node_twin_flip", flip.size());

@@ -143,7 +143,7 @@ TEST(KokkosEvents, AStepCopiesNoViewAndWaitsOnce) {
     double scale;
     long fused_launches, staged_launches;
   };
-  const Case cases[] = {{"taylor", "remap", 0.25, 17, 32}, {"sedov", "lagrange", 0.34, 9, 17}};
+  const Case cases[] = {{"taylor", "remap", 0.25, 15, 30}, {"sedov", "lagrange", 0.34, 8, 16}};
   std::vector<std::string> forms{"staged"};
   if (kFusedKernelsBuilt) forms.push_back("fused");
   for (const Case& c : cases) {
