@@ -107,6 +107,13 @@ TEST(KokkosTools, EveryLaunchAndViewIsLabelledAndEachPhaseIsARegion) {
   }
 }
 
+// One kernel launch (a free function: nvcc takes no device lambda in a test body).
+void fillWithIndex(const RealView& a) {
+  Kokkos::parallel_for(
+      "lagremap::test::fill", Kokkos::RangePolicy<ExecSpace>(0, a.extent(0)),
+      KOKKOS_LAMBDA(const Index i) { a(i) = i; });
+}
+
 // The program's event counter (src/kokkos_events.hpp): each launch and deep
 // copy is counted, and a fence is a host synchronisation only when the
 // device has work outstanding (a second fence costs nothing).
@@ -115,9 +122,7 @@ TEST(KokkosEvents, CountLaunchesCopiesAndOnlyTheWaitsWithWorkOutstanding) {
   const RealView a("lagremap::test::a", 100), b("lagremap::test::b", 100);
   fenceFor("test: nothing outstanding before");
   const KokkosEventCounts start = kokkosEventCounts();
-  Kokkos::parallel_for(
-      "lagremap::test::fill", Kokkos::RangePolicy<ExecSpace>(0, 100),
-      KOKKOS_LAMBDA(const Index i) { a(i) = i; });
+  fillWithIndex(a);
   fenceFor("test: the fill");
   fenceFor("test: nothing new");
   const KokkosEventCounts after_fill = kokkosEventCounts() - start;
