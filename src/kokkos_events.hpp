@@ -44,7 +44,7 @@ struct StepEvents {
 // Registers the counter's callbacks. Called before Kokkos::initialize (so
 // that Kokkos asks the counter's tool settings: no global fences around
 // each callback); a tool library the user loads (KOKKOS_TOOLS_LIBS) takes
-// the callbacks' places instead, and counting() then says false.
+// the callbacks' places instead, and kokkosEventsCounted() then says false.
 void installKokkosEventCounter();
 
 // Whether the counter's callbacks are the ones Kokkos calls.
