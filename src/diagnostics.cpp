@@ -1,18 +1,14 @@
 #include "diagnostics.hpp"
 
-#include "kernels/mesh_quality.hpp"
 #include "kokkos_events.hpp"
 #include "parallel.hpp"
 
 namespace lagremap {
 
-void sumAudit(const Mesh& mesh, const State& state, bool with_mesh_quality,
-              const ReportView<AuditSums>& into) {
+void sumAudit(const Mesh& mesh, const State& state, const ReportView<AuditSums>& into) {
   const auto s = state;
   const auto cell_owned = mesh.cell_owned;
   const auto node_owned = mesh.node_owned;
-  const auto cell_nodes = mesh.cell_nodes;
-  const auto x_n = mesh.x_n;
   const Index n_cells = mesh.n_cells, n_nodes = mesh.n_nodes;
   Kokkos::parallel_reduce(
       "lagremap::diagnostics::audit",
@@ -28,10 +24,6 @@ void sumAudit(const Mesh& mesh, const State& state, bool with_mesh_quality,
           acc.v[3] += m * v.z;
           acc.v[4] += kinetic;
           acc.v[5] += m * s.E_c(i) - kinetic;
-          if (with_mesh_quality) {
-            const double quality = cellScaledJacobianOf(NodesOfCell{cell_nodes, x_n, i});
-            acc.lowest_quality = quality < acc.lowest_quality ? quality : acc.lowest_quality;
-          }
         }
         if (i < n_nodes && node_owned(i)) {
           const Vec3 f = loadVec3(s.f_ext_n, i);
@@ -44,7 +36,7 @@ void sumAudit(const Mesh& mesh, const State& state, bool with_mesh_quality,
       Kokkos::Sum<AuditSums, ReportSpace>(into));
 }
 
-Audit auditOf(AuditSums sums, bool with_mesh_quality) {
+Audit auditOf(AuditSums sums) {
   parallel::sum(sums.v, 10);
   Audit audit;
   audit.totals.mass = sums.v[0];
@@ -52,16 +44,15 @@ Audit auditOf(AuditSums sums, bool with_mesh_quality) {
   audit.totals.kinetic = sums.v[4];
   audit.totals.internal = sums.v[5];
   audit.boundary = {{sums.v[6], sums.v[7], sums.v[8]}, sums.v[9]};
-  if (with_mesh_quality) audit.mesh_quality = parallel::min(sums.lowest_quality);
   return audit;
 }
 
 namespace {
 Audit waitedAudit(const Mesh& mesh, const State& state) {
   const ReportView<AuditSums> sums("lagremap::diagnostics::audit");
-  sumAudit(mesh, state, false, sums);
+  sumAudit(mesh, state, sums);
   fenceFor("lagremap::diagnostics: the audit");
-  return auditOf(sums(), false);
+  return auditOf(sums());
 }
 }  // namespace
 

@@ -27,41 +27,15 @@ Totals computeTotals(const Mesh& mesh, const State& state);
 // corrector's, whose velocities moved the mesh), waited for.
 BoundaryPower computeBoundaryPower(const Mesh& mesh, const State& state);
 
-// A step's audit in one reduction over the cells and the nodes: both the
-// above and, asked to, the smallest scaled Jacobian of the owned cells at the
-// present nodes (kernels/mesh_quality.hpp; 1 at most). This rank's values
-// are left in `into` without waiting; auditOf reads them after a fence
-// (collective: over the ranks).
-struct AuditSums {
-  double v[10];           // the totals (6), the boundary's force (3) and power
-  double lowest_quality;  // a reduction's += keeps the smaller
-  KOKKOS_INLINE_FUNCTION AuditSums() : lowest_quality(1.0) {
-    for (int i = 0; i < 10; ++i) v[i] = 0.0;
-  }
-  KOKKOS_INLINE_FUNCTION AuditSums& operator+=(const AuditSums& other) {
-    for (int i = 0; i < 10; ++i) v[i] += other.v[i];
-    lowest_quality = other.lowest_quality < lowest_quality ? other.lowest_quality : lowest_quality;
-    return *this;
-  }
-  KOKKOS_INLINE_FUNCTION void operator+=(const volatile AuditSums& other) volatile {
-    for (int i = 0; i < 10; ++i) v[i] += other.v[i];
-    lowest_quality = other.lowest_quality < lowest_quality ? other.lowest_quality : lowest_quality;
-  }
-};
+// Both in one reduction over the cells and the nodes (a step's audit), this
+// rank's sums left in `into` without waiting; auditOf reads them after a
+// fence (collective: sums over the ranks).
+using AuditSums = SumArray<10>;
 struct Audit {
   Totals totals;
   BoundaryPower boundary;
-  double mesh_quality = 1.0;  // where asked for
 };
-void sumAudit(const Mesh& mesh, const State& state, bool with_mesh_quality,
-              const ReportView<AuditSums>& into);
-Audit auditOf(AuditSums sums, bool with_mesh_quality);
+void sumAudit(const Mesh& mesh, const State& state, const ReportView<AuditSums>& into);
+Audit auditOf(AuditSums sums);
 
 }  // namespace lagremap
-
-namespace Kokkos {
-template <>
-struct reduction_identity<lagremap::AuditSums> {
-  KOKKOS_FORCEINLINE_FUNCTION static lagremap::AuditSums sum() { return {}; }
-};
-}  // namespace Kokkos

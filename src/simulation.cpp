@@ -294,14 +294,15 @@ StepLimit Simulation::checkedStepLimit(long step, bool remapped) {
 
 void Simulation::launchDiagnostics(bool remapped) {
   auto scope = timers_.scope(Phase::Diagnostics);
-  // (the mesh quality of a moved mesh only: remap mode's is the initial mesh
-  // again, the quality the set-up measured; ALE mode's guard measured its target)
-  sumAudit(setup_.mesh, state_, !remapped, report_.audit);
+  sumAudit(setup_.mesh, state_, report_.audit);
+  // (remap mode: the initial mesh again, the quality the set-up measured; ALE
+  // mode: the relaxation's guard measured its target)
+  if (!remapped) smallestScaledJacobian(setup_.mesh, setup_.mesh.x_n, report_.mesh_quality);
   if (problem_.probe) problem_.probe.sample(setup_.mesh, state_, report_.probe);
 }
 
 void Simulation::diagnose(double dt, bool remapped) {
-  const Audit audit = auditOf(report_.audit(), !remapped);
+  const Audit audit = auditOf(report_.audit());
   const BoundaryPower& boundary = audit.boundary;
   RemapBoundaryFlux crossed;
   if (remapped) {
@@ -315,7 +316,7 @@ void Simulation::diagnose(double dt, bool remapped) {
   if (remapped && relaxation_) {
     noteMeshQuality(relaxation_->targetQuality());
   } else if (!remapped) {
-    noteMeshQuality(audit.mesh_quality);
+    noteMeshQuality(parallel::min(meshQualityOf(report_.mesh_quality())));
   }
   if (problem_.probe) {
     loop_.probe.emplace_back(loop_.time, problem_.probe.value(setup_.mesh, state_, report_.probe));
