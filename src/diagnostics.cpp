@@ -5,54 +5,58 @@
 
 namespace lagremap {
 
-void sumAudit(const Mesh& mesh, const State& state, const ReportView<AuditSums>& into) {
+void sumAudit(const Mesh& mesh, const State& state, const ReportView<SumArray<6>>& totals,
+              const ReportView<SumArray<4>>& boundary) {
   const auto s = state;
   const auto cell_owned = mesh.cell_owned;
   const auto node_owned = mesh.node_owned;
-  const Index n_cells = mesh.n_cells, n_nodes = mesh.n_nodes;
   Kokkos::parallel_reduce(
-      "lagremap::diagnostics::audit",
-      Kokkos::RangePolicy<ExecSpace>(0, n_cells > n_nodes ? n_cells : n_nodes),
-      KOKKOS_LAMBDA(const Index i, AuditSums& acc) {
-        if (i < n_cells && cell_owned(i)) {
-          const double m = s.m_c(i);
-          const Vec3 v = loadVec3(s.v_c, i);
-          const double kinetic = 0.5 * m * dot(v, v);
-          acc.v[0] += m;
-          acc.v[1] += m * v.x;
-          acc.v[2] += m * v.y;
-          acc.v[3] += m * v.z;
-          acc.v[4] += kinetic;
-          acc.v[5] += m * s.E_c(i) - kinetic;
-        }
-        if (i < n_nodes && node_owned(i)) {
-          const Vec3 f = loadVec3(s.f_ext_n, i);
-          acc.v[6] += f.x;
-          acc.v[7] += f.y;
-          acc.v[8] += f.z;
-          acc.v[9] += dot(f, loadVec3(s.v_n, i));
-        }
+      "lagremap::diagnostics::cell_totals", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
+      KOKKOS_LAMBDA(const Index c, SumArray<6>& acc) {
+        if (!cell_owned(c)) return;
+        const double m = s.m_c(c);
+        const Vec3 v = loadVec3(s.v_c, c);
+        const double kinetic = 0.5 * m * dot(v, v);
+        acc.v[0] += m;
+        acc.v[1] += m * v.x;
+        acc.v[2] += m * v.y;
+        acc.v[3] += m * v.z;
+        acc.v[4] += kinetic;
+        acc.v[5] += m * s.E_c(c) - kinetic;
       },
-      Kokkos::Sum<AuditSums, ReportSpace>(into));
+      Kokkos::Sum<SumArray<6>, ReportSpace>(totals));
+  Kokkos::parallel_reduce(
+      "lagremap::diagnostics::boundary_power", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_nodes),
+      KOKKOS_LAMBDA(const Index n, SumArray<4>& acc) {
+        if (!node_owned(n)) return;
+        const Vec3 f = loadVec3(s.f_ext_n, n);
+        acc.v[0] += f.x;
+        acc.v[1] += f.y;
+        acc.v[2] += f.z;
+        acc.v[3] += dot(f, loadVec3(s.v_n, n));
+      },
+      Kokkos::Sum<SumArray<4>, ReportSpace>(boundary));
 }
 
-Audit auditOf(AuditSums sums) {
-  parallel::sum(sums.v, 10);
+Audit auditOf(SumArray<6> totals, SumArray<4> boundary) {
+  parallel::sum(totals.v, 6);
+  parallel::sum(boundary.v, 4);
   Audit audit;
-  audit.totals.mass = sums.v[0];
-  audit.totals.momentum = {sums.v[1], sums.v[2], sums.v[3]};
-  audit.totals.kinetic = sums.v[4];
-  audit.totals.internal = sums.v[5];
-  audit.boundary = {{sums.v[6], sums.v[7], sums.v[8]}, sums.v[9]};
+  audit.totals.mass = totals.v[0];
+  audit.totals.momentum = {totals.v[1], totals.v[2], totals.v[3]};
+  audit.totals.kinetic = totals.v[4];
+  audit.totals.internal = totals.v[5];
+  audit.boundary = {{boundary.v[0], boundary.v[1], boundary.v[2]}, boundary.v[3]};
   return audit;
 }
 
 namespace {
 Audit waitedAudit(const Mesh& mesh, const State& state) {
-  const ReportView<AuditSums> sums("lagremap::diagnostics::audit");
-  sumAudit(mesh, state, sums);
+  const ReportView<SumArray<6>> totals("lagremap::diagnostics::totals");
+  const ReportView<SumArray<4>> boundary("lagremap::diagnostics::boundary_power");
+  sumAudit(mesh, state, totals, boundary);
   fenceFor("lagremap::diagnostics: the audit");
-  return auditOf(sums());
+  return auditOf(totals(), boundary());
 }
 }  // namespace
 

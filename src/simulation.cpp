@@ -294,7 +294,7 @@ StepLimit Simulation::checkedStepLimit(long step, bool remapped) {
 
 void Simulation::launchDiagnostics(bool remapped) {
   auto scope = timers_.scope(Phase::Diagnostics);
-  sumAudit(setup_.mesh, state_, report_.audit);
+  sumAudit(setup_.mesh, state_, report_.totals, report_.boundary);
   // (remap mode: the initial mesh again, the quality the set-up measured; ALE
   // mode: the relaxation's guard measured its target)
   if (!remapped) smallestScaledJacobian(setup_.mesh, setup_.mesh.x_n, report_.mesh_quality);
@@ -302,7 +302,7 @@ void Simulation::launchDiagnostics(bool remapped) {
 }
 
 void Simulation::diagnose(double dt, bool remapped) {
-  const Audit audit = auditOf(report_.audit());
+  const Audit audit = auditOf(report_.totals(), report_.boundary());
   const BoundaryPower& boundary = audit.boundary;
   RemapBoundaryFlux crossed;
   if (remapped) {

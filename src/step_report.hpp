@@ -24,8 +24,9 @@ struct StepReport {
   StepLimitView after_remap{"lagremap::report::after_remap"};  // the remapped state
   // the remap's outer-face crossings (RemapBoundaryFlux: mass, momentum, energy)
   ReportView<SumArray<5>> crossed{"lagremap::report::crossed"};
-  // the conservation audit's sums (AuditSums: the totals, the boundary's work)
-  ReportView<SumArray<10>> audit{"lagremap::report::audit"};
+  // the conservation audit's sums: the cells' totals, the boundary's work
+  ReportView<SumArray<6>> totals{"lagremap::report::totals"};
+  ReportView<SumArray<4>> boundary{"lagremap::report::boundary"};
   ReportView<double> mesh_quality{"lagremap::report::mesh_quality"};
   ProbeSlots probe;
 };
