@@ -57,57 +57,29 @@ static void computeFusedCornerTerms(const Mesh& mesh, const Terms& terms) {
       });
 }
 
-// The staged form's rows of computeCornerTerms.
-inline MatRealView allocateCornerRows(const Mesh& mesh) {
-  return MatRealView("lagremap::corners::rows", mesh.n_cells, detail::corner_rows::kColumns);
-}
-
 // Per cell: V and sigma reconstructed at its nodes (docs/method.md §A5: piecewise
 // constant at first order; second order: least-squares gradients limited by
 // one frame-independent factor each, a solid's whole Cauchy stress as a
 // tensor, a fluid's pressure as a scalar), then B_cp = M_cp V_c(p) -
-// sigma_c(p) A_cp. On CPU builds the cells go kCellLanes at a time in the
-// lanes of a vector where their stencils have one shape (the same bits as
-// cell by cell, docs/method.md §7.1).
-// `rows`: the staged form's per-cell rows (allocateCornerRows, KernelForm::
-// Staged); without them the fused form runs (built on CPU backends only).
+// sigma_c(p) A_cp. In the fused form (built on CPU backends only) the cells
+// go kCellLanes at a time in the lanes of a vector where their stencils have
+// one shape; in the staged form a cell's faces, vertices and corners go in
+// the lanes of a vector (the same bits either way, docs/method.md §7.1, §7.6).
 static inline void computeCornerTerms(const Mesh& mesh, const State& state,
                                       const CornerControls& controls,
-                                      const MatRealView& rows = {}) {
+                                      KernelForm form = defaultKernelForm()) {
   const detail::CornerTerms terms = detail::cornerTerms(mesh, state, controls);
   if (terms.atomics) {
     Kokkos::deep_copy(state.M_n, 0.0);
     Kokkos::deep_copy(state.B_n, 0.0);
   }
-  const auto policy = Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells);
-  if (!kFusedKernelsBuilt || rows.extent(0) > 0) {
-    // (a caller outside the time loop may leave the rows to this call)
-    const MatRealView own_rows = rows.extent(0) > 0 ? rows : allocateCornerRows(mesh);
-    const detail::StagedCorners staged{
-        terms.cell_nodes, terms.neighbors, terms.face_side,    terms.side_kind, terms.x_n,
-        terms.s,          terms.z_prisms,  terms.second_order, terms.atomics,   own_rows};
-    if (staged.second_order) {
-      Kokkos::parallel_for(
-          "lagremap::corners::velocity_limiter", policy,
-          KOKKOS_LAMBDA(const Index c) { staged.velocityLimiter(c); });
-      // (at most 128 registers a thread, 4 blocks of 128 threads an SM: it
-      // needs 130 unbounded, and no spill bounded)
-      Kokkos::parallel_for(
-          "lagremap::corners::stress_gradient",
-          Kokkos::RangePolicy<ExecSpace, Kokkos::LaunchBounds<128, 4>>(0, mesh.n_cells),
-          KOKKOS_LAMBDA(const Index c) { staged.stressGradient(c); });
-      if (terms.s.has_solids) {
-        Kokkos::parallel_for(
-            "lagremap::corners::stress_limiter", policy,
-            KOKKOS_LAMBDA(const Index c) { staged.stressLimiter(c); });
-      }
-    }
-    Kokkos::parallel_for(
-        "lagremap::corners::right_hand_sides", policy,
-        KOKKOS_LAMBDA(const Index c) { staged.rightHandSides(c); });
-    return;
+  if constexpr (kFusedKernelsBuilt) {
+    if (form == KernelForm::Fused) return computeFusedCornerTerms(mesh, terms);
   }
-  if constexpr (kFusedKernelsBuilt) computeFusedCornerTerms(mesh, terms);
+  const detail::StagedCorners staged{
+      terms.cell_nodes, terms.neighbors, terms.face_side,    terms.side_kind, terms.x_n,
+      terms.s,          terms.z_prisms,  terms.second_order, terms.atomics,   mesh.n_cells};
+  Kokkos::parallel_for("lagremap::corners::reconstruct_and_impedance", staged.policy(), staged);
 }
 
 }  // namespace lagremap

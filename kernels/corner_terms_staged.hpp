@@ -1,7 +1,8 @@
 // The corner terms in the staged form (KernelForm::Staged, docs/method.md
-// §7.6): the fused form's arithmetic (corner_terms_fused.hpp) split into
-// kernels that each hold a part of it, through a row of gradients and
-// limiter factors per cell. Launched by computeCornerTerms (corner_terms.hpp).
+// §7.6): the fused form's arithmetic (corner_terms_fused.hpp) laid out for a
+// GPU, one kernel, a cell to each thread of a team and its faces, rows of
+// gradients, vertices and corners in the lanes of a vector (8 on a GPU: four
+// cells a warp). Launched by computeCornerTerms (corner_terms.hpp).
 #pragma once
 
 #include "../data/mesh.hpp"
@@ -9,6 +10,7 @@
 #include "corner_stencil.hpp"
 #include "geometry.hpp"
 #include "hex.hpp"
+#include "kernel_form.hpp"
 #include "reconstruction.hpp"
 
 namespace lagremap {
@@ -16,72 +18,114 @@ namespace lagremap {
 namespace detail {
 
 // The staged form of the corner terms (KernelForm::Staged, docs/method.md
-// §7.6): the fused form's arithmetic in three kernels that each hold a part
-// of it. The velocity limiter, then the stress (or pressure) limiter, each
-// from its own pass over the stencil, store a cell's gradients and limiter
-// factors in a row of CornerRows; the corner kernel then forms each node's
-// values and B_cp one corner at a time. The limiters visit one vertex at a
-// time (projectedLimiterByVertex) in the fused form's vertex order, so every
-// minimum and maximum is over the same numbers: the same bits.
-namespace corner_rows {
+// §7.6). A cell's lanes take one face, one gradient row, one vertex or one
+// corner each, and leave what the others read in the team's scratch memory
+// (a row of columns per cell, below, each written once a stage); the sums
+// over faces and the limiters' minima over vertices are then taken by every
+// lane in the fused form's order, so the bits are the fused form's.
+namespace corner_lanes {
 // (enumerators, not constexpr variables: device code takes them by reference)
 enum : int {
-  kGradV = 0,    // 3 x 3: the gradients of V_x, V_y, V_z
-  kPhiV = 9,     // the velocity's limiter factor
-  kPhiS = 10,    // the stress's (a solid) or the pressure's (a fluid)
-  kGradS = 11,   // 6 x 3 (a solid: xx, yy, zz, xy, yz, xz) or 3 (a fluid: grad p)
-  kPulled = 29,  // 6 x 3: a solid's pulled-back jumps (pullBack), the limiter's
-  kColumns = 47,
+  kDx = 0,         // 6 x 3: the offset across each face (zero for a free side)
+  kDv = 18,        // 6 x 3: the velocity jump (an open side's continued)
+  kDs = 36,        // 6 x 6: the stress jump (a solid) or the pressure jump (a fluid: first)
+  kFace = 72,      // 6: StencilFace across each face
+  kGrad = 78,      // 9 x 3: the gradients of V_x, V_y, V_z, then sigma's 6 (a solid) or p's
+  kPulled = 105,   // 6 x 3: a solid's pulled-back jumps (pullBack)
+  kReachV = 123,   // 8: the velocity limiter's reach at each vertex
+  kScaledV = 131,  // 8: ... and its scaled squared length
+  kLengthV = 139,  // 8: ... and |delta_p|^2
+  kReachS = 147,   // 8, 8, 8: the same for the stress limiter
+  kScaledS = 155,
+  kLengthS = 163,
+  kV = 171,  // 3, 3, 1, 6: the cell's V, centroid, p and sigma
+  kCentroid = 174,
+  kP = 177,
+  kSigma = 178,
+  kColumns = 184,
+  kCellsPerTeam = 16,  // a team's cells (on a GPU 16 x 8 lanes, 128 threads)
+  kGpuLanes = 8,       // a cell's lanes on a GPU
 };
-}  // namespace corner_rows
+}  // namespace corner_lanes
 
-KOKKOS_FORCEINLINE_FUNCTION Vec3 loadRowVec3(const MatRealView& rows, Index c, int column) {
-  return {rows(c, column), rows(c, column + 1), rows(c, column + 2)};
-}
-KOKKOS_FORCEINLINE_FUNCTION void storeRowVec3(const MatRealView& rows, Index c, int column,
-                                              const Vec3& v) {
-  rows(c, column) = v.x;
-  rows(c, column + 1) = v.y;
-  rows(c, column + 2) = v.z;
+// The vector lanes of a cell: kGpuLanes on a GPU, one on a CPU (where the
+// fused form runs; there the staged form's lanes are a loop).
+constexpr int kStagedLanes = kFusedKernelsBuilt ? 1 : corner_lanes::kGpuLanes;
+
+using ScratchRows = Kokkos::View<double**, Kokkos::LayoutRight, ExecSpace::scratch_memory_space,
+                                 Kokkos::MemoryUnmanaged>;
+// (a GPU's block of 128 threads, 6 an SM: at most 80 registers, no spill on
+// sm_90, 24 warps an SM where 128 registers ran 16)
+using CornerTeams = Kokkos::TeamPolicy<ExecSpace, Kokkos::LaunchBounds<128, 6>>;
+using TeamMember = CornerTeams::member_type;
+
+// One cell's row of a team's scratch memory.
+struct ScratchRow {
+  ScratchRows rows;
+  int i;
+  KOKKOS_FORCEINLINE_FUNCTION double& operator()(int column) const { return rows(i, column); }
+  KOKKOS_FORCEINLINE_FUNCTION Vec3 vec3(int column) const {
+    return {rows(i, column), rows(i, column + 1), rows(i, column + 2)};
+  }
+  KOKKOS_FORCEINLINE_FUNCTION void store(int column, const Vec3& v) const {
+    rows(i, column) = v.x;
+    rows(i, column + 1) = v.y;
+    rows(i, column + 2) = v.z;
+  }
+  KOKKOS_FORCEINLINE_FUNCTION SymMat3 sym(int column) const {
+    return {rows(i, column),     rows(i, column + 1), rows(i, column + 2),
+            rows(i, column + 3), rows(i, column + 4), rows(i, column + 5)};
+  }
+  KOKKOS_FORCEINLINE_FUNCTION void store(int column, const SymMat3& m) const {
+    const double entries[6] = {m.xx, m.yy, m.zz, m.xy, m.yz, m.xz};
+    for (int j = 0; j < 6; ++j) rows(i, column + j) = entries[j];
+  }
+  KOKKOS_FORCEINLINE_FUNCTION StencilFace face(int f) const {
+    return StencilFace(int(rows(i, corner_lanes::kFace + f)));
+  }
+  KOKKOS_FORCEINLINE_FUNCTION bool open(int f) const { return face(f) == StencilFace::None; }
+};
+
+// projectedLimiter (reconstruction.hpp) at one vertex: its reach and scaled
+// squared length from the 6 jumps (`jump(f)`), the direction of its
+// excursion and |delta_p|^2; VertexLimiter takes the minimum over vertices.
+template <bool plateau_guard, bool vertex_sums, class Jump>
+KOKKOS_INLINE_FUNCTION void vertexReach(const Jump& jump, int p, const Vec3& direction,
+                                        double length2, double& reach, double& length2_scaled) {
+  double toward = 0.0, away = 0.0, along[6];
+  for (int f = 0; f < 6; ++f) {
+    const Vec3 jump_f = jump(f);
+    along[f] = jump_f.x * direction.x + jump_f.y * direction.y + jump_f.z * direction.z;
+    toward = along[f] > toward ? along[f] : toward;
+    if (plateau_guard) away = -along[f] > away ? -along[f] : away;
+  }
+  if (vertex_sums) {
+    const bool on_x_plus = p == 1 || p == 2 || p == 5 || p == 6;
+    const double fx = on_x_plus ? along[1] : along[0];
+    const double fy = (p & 2) ? along[3] : along[2];
+    const double fz = (p & 4) ? along[5] : along[4];
+    const double sums[4] = {fx + fy, fy + fz, fx + fz, fx + fy + fz};
+    for (const double sum : sums) {
+      toward = sum > toward ? sum : toward;
+      if (plateau_guard) away = -sum > away ? -sum : away;
+    }
+  }
+  reach = toward;
+  length2_scaled = length2;
+  if (plateau_guard && toward < away) {
+    reach = 0.5 * toward * (away * away + toward * toward);
+    length2_scaled = length2 * (away * away);
+  }
 }
 
-// projectedLimiter (reconstruction.hpp) one vertex at a time:
-// `vertex(p, direction, length2)` gives vertex p's direction and |delta_p|^2.
-template <bool plateau_guard, bool vertex_sums, class VertexOf>
-KOKKOS_INLINE_FUNCTION double projectedLimiterByVertex(const Vec3 jumps[6], int n_vertices,
-                                                       const VertexOf& vertex) {
+// The smallest reach / length over the vertices, in vertex order (the
+// comparison without a division, as projectedLimiter).
+struct VertexLimiter {
   double limiter = 1.0;
-  LAGREMAP_NO_UNROLL
-  for (int p = 0; p < n_vertices; ++p) {
-    Vec3 direction;
-    double length2;
-    vertex(p, direction, length2);
-    double toward = 0.0, away = 0.0, along[6];
-    for (int f = 0; f < 6; ++f) {
-      along[f] = jumps[f].x * direction.x + jumps[f].y * direction.y + jumps[f].z * direction.z;
-      toward = along[f] > toward ? along[f] : toward;
-      if (plateau_guard) away = -along[f] > away ? -along[f] : away;
-    }
-    if (vertex_sums) {
-      const bool on_x_plus = p == 1 || p == 2 || p == 5 || p == 6;
-      const double fx = on_x_plus ? along[1] : along[0];
-      const double fy = (p & 2) ? along[3] : along[2];
-      const double fz = (p & 4) ? along[5] : along[4];
-      const double sums[4] = {fx + fy, fy + fz, fx + fz, fx + fy + fz};
-      for (const double sum : sums) {
-        toward = sum > toward ? sum : toward;
-        if (plateau_guard) away = -sum > away ? -sum : away;
-      }
-    }
-    double reach = toward, length2_scaled = length2;
-    if (plateau_guard && toward < away) {
-      reach = 0.5 * toward * (away * away + toward * toward);
-      length2_scaled = length2 * (away * away);
-    }
+  KOKKOS_FORCEINLINE_FUNCTION void include(double reach, double length2_scaled) {
     if (reach < limiter * length2_scaled) limiter = reach / length2_scaled;
   }
-  return limiter;
-}
+};
 
 struct StagedCorners {
   CellNodesView cell_nodes;
@@ -91,266 +135,306 @@ struct StagedCorners {
   Vec3View x_n;
   State s;
   bool z_prisms, second_order, atomics;
-  MatRealView rows;  // (cell, corner_rows::kColumns)
+  Index n_cells;
+
+  // What a cell's lanes share: its index, nodes and row of the team's
+  // scratch, which holds its values (read where they are used: fewer
+  // registers held through the stage).
+  struct Cell {
+    Index c;
+    NodesOfCell nodes;
+    bool solid;
+    ScratchRow row;
+    KOKKOS_FORCEINLINE_FUNCTION Vec3 v() const { return row.vec3(corner_lanes::kV); }
+    KOKKOS_FORCEINLINE_FUNCTION Vec3 centroid() const { return row.vec3(corner_lanes::kCentroid); }
+    KOKKOS_FORCEINLINE_FUNCTION double p() const { return row(corner_lanes::kP); }
+    KOKKOS_FORCEINLINE_FUNCTION SymMat3 sigma() const { return row.sym(corner_lanes::kSigma); }
+  };
+
+  // Lane j: the cell's value j into its row: V, centroid, p and sigma = S - p I
+  // (a fluid's -p I).
+  KOKKOS_INLINE_FUNCTION void loadCell(const TeamMember& team, const Cell& cell) const {
+    Kokkos::parallel_for(Kokkos::ThreadVectorRange(team, 13), [&](const int j) {
+      const Index c = cell.c;
+      double value;
+      if (j < 3) {
+        value = s.v_c(c, j);
+      } else if (j < 6) {
+        value = s.x_c(c, j - 3);
+      } else if (j == 6) {
+        value = s.p_c(c);
+      } else {
+        const int k = j - 7;  // (xx, yy, zz, xy, yz, xz)
+        const double identity = k < 3 ? -s.p_c(c) : 0.0;
+        value = cell.solid ? s.S_c(c, k) + identity : identity;
+      }
+      cell.row(corner_lanes::kV + j) = value;
+    });
+  }
 
   // What stands across face f: the offset dx to it, the velocity jump dv and
   // (a mirror) the wall's normal; false for a free side (no jump).
-  KOKKOS_INLINE_FUNCTION bool across(Index c, int f, const NodesOfCell& nodes, const Vec3& centroid,
-                                     const Vec3& v_cell, StencilFace& face, Vec3& dx, Vec3& dv,
+  KOKKOS_INLINE_FUNCTION bool across(const Cell& cell, int f, StencilFace& face, Vec3& dx, Vec3& dv,
                                      Vec3& normal) const {
-    face = stencilFace(neighbors, face_side, side_kind, c, f);
+    face = stencilFace(neighbors, face_side, side_kind, cell.c, f);
     if (face == StencilFace::Neighbour) {
-      const Index nb = neighbors(c, f);
-      dx = loadVec3(s.x_c, nb) - centroid;
-      dv = loadVec3(s.v_c, nb) - v_cell;
+      const Index nb = neighbors(cell.c, f);
+      dx = loadVec3(s.x_c, nb) - cell.centroid();
+      dv = loadVec3(s.v_c, nb) - cell.v();
       return true;
     }
     if (face == StencilFace::None) return false;
     if (z_prisms && f >= 4) {
       const double side = f == 4 ? -1.0 : 1.0;
       normal = Vec3{0.0, 0.0, side};
-      dx = Vec3{0.0, 0.0, side * (nodes(4).z - nodes(0).z)};
-      dv = Vec3{0.0, 0.0, -2.0 * v_cell.z};
+      dx = Vec3{0.0, 0.0, side * (cell.nodes(4).z - cell.nodes(0).z)};
+      dv = Vec3{0.0, 0.0, -2.0 * cell.v().z};
     } else {
-      mirrorAcrossFace(nodes, f, centroid, v_cell, dx, dv, normal);
+      mirrorAcrossFace(cell.nodes, f, cell.centroid(), cell.v(), dx, dv, normal);
     }
     return true;
   }
 
-  // The stress jump across face f (zero for a free side) and the offset to it.
-  KOKKOS_INLINE_FUNCTION SymMat3 stressJump(Index c, int f, const NodesOfCell& nodes,
-                                            const Vec3& centroid, const Vec3& v_cell,
-                                            const SymMat3& sigma_cell, Vec3& dx) const {
-    StencilFace face;
-    Vec3 dv, normal;
-    if (!across(c, f, nodes, centroid, v_cell, face, dx, dv, normal)) return identitySym(0.0);
-    if (face == StencilFace::Mirror) return mirrorJump(sigma_cell, normal);
-    const Index nb = neighbors(c, f);
-    return loadSym(s.S_c, nb) + identitySym(-s.p_c(nb)) - sigma_cell;
-  }
-
   KOKKOS_INLINE_FUNCTION int vertices() const { return z_prisms ? 4 : kHexVertices; }
 
-  // The velocity's gradient and limiter factor (limitedNodeVelocities).
-  KOKKOS_INLINE_FUNCTION void velocityLimiter(Index c) const {
-    const NodesOfCell nodes{cell_nodes, x_n, c};
-    const Vec3 v_cell = loadVec3(s.v_c, c), centroid = loadVec3(s.x_c, c);
-    const bool solid = s.aT_c(c) > 0.0;
-    LeastSquares lsq;
-    Vec3 rhs_v[3] = {Vec3{0.0, 0.0, 0.0}, Vec3{0.0, 0.0, 0.0}, Vec3{0.0, 0.0, 0.0}};
-    for (int f = 0; f < 6; ++f) {
+  // Lane f: what stands across face f, its offset and its jumps of V and of
+  // sigma (a solid) or p (a fluid); zero across a free side.
+  KOKKOS_INLINE_FUNCTION void faces(const TeamMember& team, const Cell& cell) const {
+    Kokkos::parallel_for(Kokkos::ThreadVectorRange(team, 6), [&](const int f) {
       StencilFace face;
-      Vec3 dx, dv, normal;
-      if (!across(c, f, nodes, centroid, v_cell, face, dx, dv, normal)) continue;
-      lsq.addOffset(dx);
-      rhs_v[0] += dv.x * dx;
-      rhs_v[1] += dv.y * dx;
-      rhs_v[2] += dv.z * dx;
-    }
-    const SymMat3 inv = lsq.solver();
-    const Vec3 grad_v[3] = {inv * rhs_v[0], inv * rhs_v[1], inv * rhs_v[2]};
-    // the jumps again, from a second pass (not held through the first)
-    Vec3 dv_nb[6];
-    int open_sides = 0;  // bit f: face f is an open side (one register, not six)
-    for (int f = 0; f < 6; ++f) {
-      StencilFace face;
-      Vec3 dx, normal;
-      if (!across(c, f, nodes, centroid, v_cell, face, dx, dv_nb[f], normal)) {
-        dv_nb[f] = Vec3{0.0, 0.0, 0.0};
-        open_sides |= 1 << f;
+      Vec3 dx{0.0, 0.0, 0.0}, dv{0.0, 0.0, 0.0}, normal{0.0, 0.0, 0.0};
+      const bool present = across(cell, f, face, dx, dv, normal);
+      cell.row.store(corner_lanes::kDx + 3 * f, dx);
+      cell.row.store(corner_lanes::kDv + 3 * f, dv);
+      cell.row(corner_lanes::kFace + f) = double(int(face));
+      const Index nb = neighbors(cell.c, f);
+      if (cell.solid) {
+        const SymMat3 sigma_cell = cell.sigma();
+        const SymMat3 jump = !present ? identitySym(0.0)
+                             : face == StencilFace::Mirror
+                                 ? mirrorJump(sigma_cell, normal)
+                                 : loadSym(s.S_c, nb) + identitySym(-s.p_c(nb)) - sigma_cell;
+        cell.row.store(corner_lanes::kDs + 6 * f, jump);
+      } else {
+        cell.row(corner_lanes::kDs + 6 * f) =
+            face == StencilFace::Neighbour ? s.p_c(nb) - cell.p() : 0.0;
       }
-    }
-    continueAcrossOpenSides([open_sides](int f) { return ((open_sides >> f) & 1) != 0; }, dv_nb);
-    double longest2 = 0.0;
-    const auto vertex = [&](int p, Vec3& direction, double& length2) {
-      const Vec3 offset = nodes(p) - centroid;
-      direction = Vec3{grad_v[0].x * offset.x + grad_v[0].y * offset.y + grad_v[0].z * offset.z,
-                       grad_v[1].x * offset.x + grad_v[1].y * offset.y + grad_v[1].z * offset.z,
-                       grad_v[2].x * offset.x + grad_v[2].y * offset.y + grad_v[2].z * offset.z};
-      length2 = direction.x * direction.x + direction.y * direction.y + direction.z * direction.z;
-      longest2 = length2 > longest2 ? length2 : longest2;
-    };
-    const double phi_v = solid ? projectedLimiterByVertex<true, true>(dv_nb, vertices(), vertex)
-                               : projectedLimiterByVertex<false, true>(dv_nb, vertices(), vertex);
-    const double sound_speed = s.aL_c(c);
-    const double phi = phi_v * phi_v * longest2 > sound_speed * sound_speed
-                           ? sound_speed / math::sqrt(longest2)
-                           : phi_v;
-    for (int i = 0; i < 3; ++i) storeRowVec3(rows, c, corner_rows::kGradV + 3 * i, grad_v[i]);
-    rows(c, corner_rows::kPhiV) = phi;
+    });
   }
 
-  // A solid's stress gradient and limiter factor (limitedNodeStresses), a
-  // fluid's pressure's (limitedNodePressures).
-  KOKKOS_INLINE_FUNCTION void stressGradient(Index c) const {
-    const NodesOfCell nodes{cell_nodes, x_n, c};
-    const Vec3 v_cell = loadVec3(s.v_c, c), centroid = loadVec3(s.x_c, c);
-    const double p_cell = s.p_c(c);
-    const bool solid = s.aT_c(c) > 0.0;
-    const double sound_speed = s.aL_c(c);
-    const double stress_scale = s.rho_c(c) * sound_speed * sound_speed;
+  // The least-squares normal matrix's inverse (every lane, in face order).
+  KOKKOS_INLINE_FUNCTION SymMat3 normalInverse(const ScratchRow& row) const {
     LeastSquares lsq;
-    if (!solid) {
-      Vec3 rhs_p{0.0, 0.0, 0.0};
-      Bounds pb(p_cell);
+    for (int f = 0; f < 6; ++f) {
+      if (!row.open(f)) lsq.addOffset(row.vec3(corner_lanes::kDx + 3 * f));
+    }
+    return lsq.solver();
+  }
+
+  // Lane r: gradient row r, V's 3 then sigma's 6 (a solid) or p's 1, from
+  // the jumps across the faces with a neighbour or a mirror.
+  KOKKOS_INLINE_FUNCTION void gradients(const TeamMember& team, const Cell& cell,
+                                        const SymMat3& inv) const {
+    Kokkos::parallel_for(Kokkos::ThreadVectorRange(team, cell.solid ? 9 : 4), [&](const int r) {
+      Vec3 rhs{0.0, 0.0, 0.0};
       for (int f = 0; f < 6; ++f) {
-        StencilFace face;
-        Vec3 dx, dv, normal;
-        if (!across(c, f, nodes, centroid, v_cell, face, dx, dv, normal)) continue;
-        const double dp = face == StencilFace::Neighbour ? s.p_c(neighbors(c, f)) - p_cell : 0.0;
-        lsq.addOffset(dx);
-        rhs_p += dp * dx;
-        pb.include(p_cell + dp);
+        if (cell.row.open(f)) continue;
+        const double jump = r < 3 ? cell.row(corner_lanes::kDv + 3 * f + r)
+                                  : cell.row(corner_lanes::kDs + 6 * f + (r - 3));
+        rhs += jump * cell.row.vec3(corner_lanes::kDx + 3 * f);
       }
-      const Vec3 grad_p = lsq.solver() * rhs_p;
-      VertexExcursion excursion;
-      double largest = 0.0;
-      for (int p = 0; p < vertices(); ++p) {
-        const Vec3 offset = nodes(p) - centroid;
-        const double dp = grad_p.x * offset.x + grad_p.y * offset.y + grad_p.z * offset.z;
-        excursion.include(dp);
-        const double size = math::fabs(dp);
-        largest = size > largest ? size : largest;
-      }
-      double phi_p = cellLimiter(excursion, p_cell, pb, 1.0);
-      phi_p = phi_p * largest > stress_scale ? stress_scale / largest : phi_p;
-      storeRowVec3(rows, c, corner_rows::kGradS, grad_p);
-      rows(c, corner_rows::kPhiS) = phi_p;
-      return;
-    }
-    const SymMat3 sigma_cell = loadSym(s.S_c, c) + identitySym(-p_cell);
-    const auto jump = [&](int f, Vec3& dx) {
-      return stressJump(c, f, nodes, centroid, v_cell, sigma_cell, dx);
-    };
-    Vec3 rhs[6];
-    for (int i = 0; i < 6; ++i) rhs[i] = Vec3{0.0, 0.0, 0.0};
-    for (int f = 0; f < 6; ++f) {
-      Vec3 dx;
-      const SymMat3 dsigma = jump(f, dx);
-      if (stencilFace(neighbors, face_side, side_kind, c, f) == StencilFace::None) continue;
-      lsq.addOffset(dx);
-      rhs[0] += dsigma.xx * dx;
-      rhs[1] += dsigma.yy * dx;
-      rhs[2] += dsigma.zz * dx;
-      rhs[3] += dsigma.xy * dx;
-      rhs[4] += dsigma.yz * dx;
-      rhs[5] += dsigma.xz * dx;
-    }
-    const SymMat3 inv = lsq.solver();
-    Vec3 grad[6];
-    for (int i = 0; i < 6; ++i) grad[i] = inv * rhs[i];
-    for (int i = 0; i < 6; ++i) storeRowVec3(rows, c, corner_rows::kGradS + 3 * i, grad[i]);
+      cell.row.store(corner_lanes::kGrad + 3 * r, inv * rhs);
+    });
   }
 
-  // ... and a solid's limiter factor, from the stored gradients: the
-  // excursions' squares, the pulled-back jumps from a second pass over the
-  // stencil (into the row), then the vertex by vertex limiter.
-  KOKKOS_INLINE_FUNCTION void stressLimiter(Index c) const {
-    if (!(s.aT_c(c) > 0.0)) return;  // (a fluid's is done)
-    const NodesOfCell nodes{cell_nodes, x_n, c};
-    const Vec3 v_cell = loadVec3(s.v_c, c), centroid = loadVec3(s.x_c, c);
-    const double p_cell = s.p_c(c);
-    const double sound_speed = s.aL_c(c);
-    const double stress_scale = s.rho_c(c) * sound_speed * sound_speed;
-    const SymMat3 sigma_cell = loadSym(s.S_c, c) + identitySym(-p_cell);
-    const auto jump = [&](int f, Vec3& dx) {
-      return stressJump(c, f, nodes, centroid, v_cell, sigma_cell, dx);
-    };
-    // |delta_p|^2, the Frobenius square of the excursion G d_p, at each vertex
-    // first (the gradients), then the pulled-back jumps (pullBack) from a
-    // second pass over the stencil: the two are never held at once
-    double length2[kHexVertices], largest2 = 0.0;
-    LAGREMAP_NO_UNROLL
+  // An open side's jump is the opposite one reversed (continueAcrossOpenSides),
+  // lane f for face f (a lane writes only where its opposite lane does not).
+  KOKKOS_INLINE_FUNCTION void continueAcrossOpenSides(const TeamMember& team, const Cell& cell,
+                                                      int column) const {
+    Kokkos::parallel_for(Kokkos::ThreadVectorRange(team, 6), [&](const int f) {
+      if (cell.row.open(f) && !cell.row.open(f ^ 1)) {
+        cell.row.store(column + 3 * f, -1.0 * cell.row.vec3(column + 3 * (f ^ 1)));
+      }
+    });
+  }
+
+  // The velocity's limiter factor (limitedNodeVelocities): lane p's vertex.
+  KOKKOS_INLINE_FUNCTION double velocityLimiter(const TeamMember& team, const Cell& cell) const {
+    continueAcrossOpenSides(team, cell, corner_lanes::kDv);
+    const ScratchRow& row = cell.row;
+    Kokkos::parallel_for(Kokkos::ThreadVectorRange(team, vertices()), [&](const int p) {
+      const Vec3 offset = cell.nodes(p) - cell.centroid();
+      Vec3 grad[3];
+      for (int i = 0; i < 3; ++i) grad[i] = row.vec3(corner_lanes::kGrad + 3 * i);
+      const Vec3 direction{grad[0].x * offset.x + grad[0].y * offset.y + grad[0].z * offset.z,
+                           grad[1].x * offset.x + grad[1].y * offset.y + grad[1].z * offset.z,
+                           grad[2].x * offset.x + grad[2].y * offset.y + grad[2].z * offset.z};
+      const double length2 =
+          direction.x * direction.x + direction.y * direction.y + direction.z * direction.z;
+      const auto jump = [&](int f) { return row.vec3(corner_lanes::kDv + 3 * f); };
+      double reach, scaled;
+      if (cell.solid) {
+        vertexReach<true, true>(jump, p, direction, length2, reach, scaled);
+      } else {
+        vertexReach<false, true>(jump, p, direction, length2, reach, scaled);
+      }
+      row(corner_lanes::kReachV + p) = reach;
+      row(corner_lanes::kScaledV + p) = scaled;
+      row(corner_lanes::kLengthV + p) = length2;
+    });
+    VertexLimiter phi_v;
+    double longest2 = 0.0;
     for (int p = 0; p < vertices(); ++p) {
-      const Vec3 d = nodes(p) - centroid;
+      phi_v.include(row(corner_lanes::kReachV + p), row(corner_lanes::kScaledV + p));
+      const double length2 = row(corner_lanes::kLengthV + p);
+      longest2 = length2 > longest2 ? length2 : longest2;
+    }
+    const double sound_speed = s.aL_c(cell.c);
+    return phi_v.limiter * phi_v.limiter * longest2 > sound_speed * sound_speed
+               ? sound_speed / math::sqrt(longest2)
+               : phi_v.limiter;
+  }
+
+  // A fluid's pressure limiter factor (limitedNodePressures), every lane.
+  KOKKOS_INLINE_FUNCTION double pressureLimiter(const Cell& cell, double stress_scale) const {
+    Bounds pb(cell.p());
+    for (int f = 0; f < 6; ++f) {
+      if (!cell.row.open(f)) pb.include(cell.p() + cell.row(corner_lanes::kDs + 6 * f));
+    }
+    const Vec3 grad_p = cell.row.vec3(corner_lanes::kGrad + 9);
+    VertexExcursion excursion;
+    double largest = 0.0;
+    for (int p = 0; p < vertices(); ++p) {
+      const Vec3 offset = cell.nodes(p) - cell.centroid();
+      const double dp = grad_p.x * offset.x + grad_p.y * offset.y + grad_p.z * offset.z;
+      excursion.include(dp);
+      const double size = math::fabs(dp);
+      largest = size > largest ? size : largest;
+    }
+    const double phi_p = cellLimiter(excursion, cell.p(), pb, 1.0);
+    return phi_p * largest > stress_scale ? stress_scale / largest : phi_p;
+  }
+
+  // A solid's stress limiter factor (limitedNodeStresses): the excursions'
+  // squares at the vertices (lane p), the pulled-back jumps (lane f), then
+  // each vertex's reach (lane p).
+  KOKKOS_INLINE_FUNCTION double stressLimiter(const TeamMember& team, const Cell& cell,
+                                              double stress_scale) const {
+    const ScratchRow& row = cell.row;
+    const auto gradient = [&](int i) { return row.vec3(corner_lanes::kGrad + 9 + 3 * i); };
+    Kokkos::parallel_for(Kokkos::ThreadVectorRange(team, vertices()), [&](const int p) {
+      const Vec3 d = cell.nodes(p) - cell.centroid();
       double e[6];
       for (int i = 0; i < 6; ++i) {
-        const Vec3 g = loadRowVec3(rows, c, corner_rows::kGradS + 3 * i);
+        const Vec3 g = gradient(i);
         e[i] = g.x * d.x + g.y * d.y + g.z * d.z;
       }
-      length2[p] =
+      row(corner_lanes::kLengthS + p) =
           e[0] * e[0] + e[1] * e[1] + e[2] * e[2] + 2.0 * (e[3] * e[3] + e[4] * e[4] + e[5] * e[5]);
-      largest2 = length2[p] > largest2 ? length2[p] : largest2;
+    });
+    Kokkos::parallel_for(Kokkos::ThreadVectorRange(team, 6), [&](const int f) {
+      const SymMat3 t = row.sym(corner_lanes::kDs + 6 * f);
+      row.store(corner_lanes::kPulled + 3 * f, t.xx * gradient(0) + t.yy * gradient(1) +
+                                                   t.zz * gradient(2) + (2.0 * t.xy) * gradient(3) +
+                                                   (2.0 * t.yz) * gradient(4) +
+                                                   (2.0 * t.xz) * gradient(5));
+    });
+    continueAcrossOpenSides(team, cell, corner_lanes::kPulled);
+    Kokkos::parallel_for(Kokkos::ThreadVectorRange(team, vertices()), [&](const int p) {
+      const auto jump = [&](int f) { return row.vec3(corner_lanes::kPulled + 3 * f); };
+      double reach, scaled;
+      vertexReach<true, false>(jump, p, cell.nodes(p) - cell.centroid(),
+                               row(corner_lanes::kLengthS + p), reach, scaled);
+      row(corner_lanes::kReachS + p) = reach;
+      row(corner_lanes::kScaledS + p) = scaled;
+    });
+    VertexLimiter phi;
+    double largest2 = 0.0;
+    for (int p = 0; p < vertices(); ++p) {
+      const double length2 = row(corner_lanes::kLengthS + p);
+      largest2 = length2 > largest2 ? length2 : largest2;
+      phi.include(row(corner_lanes::kReachS + p), row(corner_lanes::kScaledS + p));
     }
-    // the gradients from the row, a face at a time
-    const auto gradient = [&](int i) { return loadRowVec3(rows, c, corner_rows::kGradS + 3 * i); };
-    int open_sides = 0;  // bit f: face f is an open side
-    for (int f = 0; f < 6; ++f) {
-      Vec3 dx;
-      const SymMat3 t = jump(f, dx);
-      if (stencilFace(neighbors, face_side, side_kind, c, f) == StencilFace::None) {
-        open_sides |= 1 << f;
-      }
-      storeRowVec3(rows, c, corner_rows::kPulled + 3 * f,
-                   t.xx * gradient(0) + t.yy * gradient(1) + t.zz * gradient(2) +
-                       (2.0 * t.xy) * gradient(3) + (2.0 * t.yz) * gradient(4) +
-                       (2.0 * t.xz) * gradient(5));
-    }
-    // an open side's jump is the opposite one reversed, and so is its
-    // pulled-back jump, to the bit (continueAcrossOpenSides on the row)
-    for (int f = 0; f < 6; ++f) {
-      if (((open_sides >> f) & 1) != 0 && ((open_sides >> (f ^ 1)) & 1) == 0) {
-        storeRowVec3(rows, c, corner_rows::kPulled + 3 * f,
-                     -1.0 * loadRowVec3(rows, c, corner_rows::kPulled + 3 * (f ^ 1)));
-      }
-    }
-    Vec3 pulled[6];
-    for (int f = 0; f < 6; ++f) pulled[f] = loadRowVec3(rows, c, corner_rows::kPulled + 3 * f);
-    const auto vertex = [&](int p, Vec3& direction, double& vertex_length2) {
-      direction = nodes(p) - centroid;
-      vertex_length2 = length2[p];
-    };
-    double phi = projectedLimiterByVertex<true, false>(pulled, vertices(), vertex);
-    phi = phi * phi * largest2 > stress_scale * stress_scale ? stress_scale / math::sqrt(largest2)
-                                                             : phi;
-    rows(c, corner_rows::kPhiS) = phi;
+    return phi.limiter * phi.limiter * largest2 > stress_scale * stress_scale
+               ? stress_scale / math::sqrt(largest2)
+               : phi.limiter;
   }
 
-  // B_cp of each corner from the node values (repeatBottomVertices: a z
+  // Lane p: corner p's node values and B_cp (repeatBottomVertices: a z
   // prism's top vertices take the bottom ones' values).
-  KOKKOS_INLINE_FUNCTION void rightHandSides(Index c) const {
-    const NodesOfCell nodes{cell_nodes, x_n, c};
-    const Vec3 v_cell = loadVec3(s.v_c, c), centroid = loadVec3(s.x_c, c);
-    const double p_cell = s.p_c(c);
-    const bool solid = s.aT_c(c) > 0.0;
-    const SymMat3 sigma_cell =
-        solid ? loadSym(s.S_c, c) + identitySym(-p_cell) : identitySym(-p_cell);
-    LAGREMAP_NO_UNROLL
-    for (int p = 0; p < 8; ++p) {
+  KOKKOS_INLINE_FUNCTION void rightHandSides(const TeamMember& team, const Cell& cell, double phi_v,
+                                             double phi_s) const {
+    Kokkos::parallel_for(Kokkos::ThreadVectorRange(team, 8), [&](const int p) {
+      const Vec3 v_cell = cell.v();
+      const SymMat3 sigma_cell = cell.sigma();
       Vec3 v_node = v_cell;
       SymMat3 sigma_node = sigma_cell;
-      double p_node = p_cell;
+      double p_node = cell.p();
       if (second_order) {
-        const Vec3 offset = nodes(z_prisms ? p & 3 : p) - centroid;
-        const auto along = [&](int column) {
-          const Vec3 g = loadRowVec3(rows, c, column);
+        const Vec3 offset = cell.nodes(z_prisms ? p & 3 : p) - cell.centroid();
+        const auto along = [&](int r) {
+          const Vec3 g = cell.row.vec3(corner_lanes::kGrad + 3 * r);
           return g.x * offset.x + g.y * offset.y + g.z * offset.z;
         };
-        const double phi_v = rows(c, corner_rows::kPhiV), phi_s = rows(c, corner_rows::kPhiS);
-        v_node = Vec3{v_cell.x + phi_v * along(corner_rows::kGradV),
-                      v_cell.y + phi_v * along(corner_rows::kGradV + 3),
-                      v_cell.z + phi_v * along(corner_rows::kGradV + 6)};
-        if (solid) {
-          sigma_node = {sigma_cell.xx + phi_s * along(corner_rows::kGradS),
-                        sigma_cell.yy + phi_s * along(corner_rows::kGradS + 3),
-                        sigma_cell.zz + phi_s * along(corner_rows::kGradS + 6),
-                        sigma_cell.xy + phi_s * along(corner_rows::kGradS + 9),
-                        sigma_cell.yz + phi_s * along(corner_rows::kGradS + 12),
-                        sigma_cell.xz + phi_s * along(corner_rows::kGradS + 15)};
+        v_node = Vec3{v_cell.x + phi_v * along(0), v_cell.y + phi_v * along(1),
+                      v_cell.z + phi_v * along(2)};
+        if (cell.solid) {
+          sigma_node = {sigma_cell.xx + phi_s * along(3), sigma_cell.yy + phi_s * along(4),
+                        sigma_cell.zz + phi_s * along(5), sigma_cell.xy + phi_s * along(6),
+                        sigma_cell.yz + phi_s * along(7), sigma_cell.xz + phi_s * along(8)};
         } else {
-          p_node = p_cell + phi_s * along(corner_rows::kGradS);
+          p_node = cell.p() + phi_s * along(3);
         }
       }
-      const Index corner = 8 * c + p;
+      const Index corner = 8 * cell.c + p;
       const Vec3 area = loadVec3(s.A_cp, corner);
-      const Vec3 stress_force = solid ? -(sigma_node * area) : p_node * area;
+      const Vec3 stress_force = cell.solid ? -(sigma_node * area) : p_node * area;
       storeVec3(s.B_cp, corner, loadSym(s.M_cp, corner) * v_node + stress_force);
       if (atomics) {
-        const Index node = cell_nodes(c, p);
+        const Index node = cell_nodes(cell.c, p);
         for (int j = 0; j < 6; ++j) Kokkos::atomic_add(&s.M_n(node, j), s.M_cp(corner, j));
         for (int j = 0; j < 3; ++j) Kokkos::atomic_add(&s.B_n(node, j), s.B_cp(corner, j));
       }
+    });
+  }
+
+  // Cell c's corner terms, its lanes working in `row`.
+  KOKKOS_INLINE_FUNCTION void ofCell(const TeamMember& team, Index c, const ScratchRow& row) const {
+    const bool solid = s.aT_c(c) > 0.0;
+    const Cell cell{c, NodesOfCell{cell_nodes, x_n, c}, solid, row};
+    loadCell(team, cell);
+    double phi_v = 0.0, phi_s = 0.0;
+    if (second_order) {
+      faces(team, cell);
+      gradients(team, cell, normalInverse(row));
+      phi_v = velocityLimiter(team, cell);
+      const double sound_speed = s.aL_c(c);
+      const double stress_scale = s.rho_c(c) * sound_speed * sound_speed;
+      phi_s = solid ? stressLimiter(team, cell, stress_scale) : pressureLimiter(cell, stress_scale);
     }
+    rightHandSides(team, cell, phi_v, phi_s);
+  }
+
+  // A team's cells, one to each of its threads.
+  KOKKOS_INLINE_FUNCTION void operator()(const TeamMember& team) const {
+    const ScratchRows rows(team.team_scratch(0), int(corner_lanes::kCellsPerTeam),
+                           int(corner_lanes::kColumns));
+    const Index first = team.league_rank() * corner_lanes::kCellsPerTeam;
+    const int count = n_cells - first < corner_lanes::kCellsPerTeam ? n_cells - first
+                                                                    : corner_lanes::kCellsPerTeam;
+    Kokkos::parallel_for(Kokkos::TeamThreadRange(team, count), [&](const int i) {
+      ofCell(team, first + i, ScratchRow{rows, i});
+    });
+  }
+
+  // The launch: a team of 16 cells (on a GPU 16 threads of 8 lanes).
+  CornerTeams policy() const {
+    const int teams = (n_cells + corner_lanes::kCellsPerTeam - 1) / corner_lanes::kCellsPerTeam;
+    const int threads = kStagedLanes > 1 ? int(corner_lanes::kCellsPerTeam) : 1;
+    CornerTeams teams_policy(teams, threads, kStagedLanes);
+    return teams_policy.set_scratch_size(
+        0, Kokkos::PerTeam(
+               ScratchRows::shmem_size(corner_lanes::kCellsPerTeam, corner_lanes::kColumns)));
   }
 };
 

@@ -36,7 +36,6 @@ std::string describeInvalidCell(const StepLimit& limit, long step, const char* w
 LagrangeStep::LagrangeStep(Mesh& mesh, State& state, const Numerics& numerics, PhaseTimers& timers,
                            const Halo* halo)
     : mesh_(mesh), state_(state), numerics_(numerics), timers_(timers), halo_(halo) {
-  if (numerics_.kernels == KernelForm::Staged) corner_rows_ = allocateCornerRows(mesh_);
   if (state_.has_solids) {
     const auto materials = Kokkos::create_mirror_view_and_copy(HostSpace(), state_.materials);
     for (int k = 0; k < state_.n_materials; ++k) {
@@ -103,7 +102,7 @@ void LagrangeStep::stage(double dt_stage, bool last_stage, const StepLimitView& 
 
 void LagrangeStep::computeCorners() {
   auto scope = timers_.scope(Phase::Corners);
-  computeCornerTerms(mesh_, state_, cornerControls(), corner_rows_);
+  computeCornerTerms(mesh_, state_, cornerControls(), numerics_.kernels);
 }
 
 void LagrangeStep::solveNodesAndMove(double dt_stage) {

@@ -113,8 +113,6 @@ class LagrangeStep {
   bool nodes_start_on_target_ = false;  // remap mode: x_n0 holds the remap's target
   // Bit k: material k has strength, a deviator to keep (State::materials).
   unsigned solid_materials_ = 0;
-  // The staged form's per-cell rows of the corner terms (empty: fused).
-  MatRealView corner_rows_;
   // Where advance() and computeGeometry() wait for their candidates.
   StepReport own_report_;
   // The halo's lists (src/fields.hpp), made once: the Views they name are
