@@ -26,17 +26,16 @@ import sys
 
 HERE = pathlib.Path(__file__).resolve().parent
 
-# A run: materials M, remapped columns V, corner-row columns R (the staged
-# corner kernels' per-cell rows), nodes per cell, whether it has solids.
+# A run: materials M, remapped columns V, nodes per cell, whether it has solids.
 RUNS = {
-    "taylor": {"mode": "remap", "M": 2, "V": 16, "R": 47, "solids": True,
+    "taylor": {"mode": "remap", "M": 2, "V": 16, "solids": True,
                "nodes_per_cell": (221 * 81 * 2) / (220 * 80), "cells": 220 * 80},
-    "sedov": {"mode": "lagrange", "M": 1, "V": 7, "R": 47, "solids": False,
+    "sedov": {"mode": "lagrange", "M": 1, "V": 7, "solids": False,
               "nodes_per_cell": None, "cells": 30 ** 3},
 }
 
 # Bytes of each View per entity, and its entity: cell, node or corner (8 a
-# cell); materials M, columns V, rows R as above. Views of a few entries
+# cell); materials M, columns V as above. Views of a few entries
 # (the material table, the sides' kinds, the projectors) count as 0.
 D, I = 8, 4  # a double, an int
 VIEWS = {
@@ -65,8 +64,7 @@ VIEWS = {
     "state::A_cp": ("corner", 3 * D), "state::M_cp": ("corner", 6 * D),
     "state::B_cp": ("corner", 3 * D),
     **{f"state::{name}": ("node", 3 * D) for name in ("x_n0", "x_n_next", "v_n", "f_ext_n")},
-    # the staged corner kernels' rows, the remap's work
-    "corners::rows": ("cell", "R*8"),
+    # the remap's work
     "remap::density": ("cell", "V*8"), "remap::primitive": ("cell", "V*8"),
     "remap::gradient": ("cell", "V*24"), "remap::reach": ("cell", D),
     "remap::integral": ("cell", "V*8"), "remap::source_range": ("cell", "M*32"),
@@ -79,7 +77,7 @@ def view_bytes_per_cell(name, run):
         sys.exit(f"kernel_bytes: no size for View {name} (add it to VIEWS)")
     entity, size = VIEWS[name]
     if isinstance(size, str):
-        size = eval(size, {}, {"M": run["M"], "V": run["V"], "R": run["R"]})
+        size = eval(size, {}, {"M": run["M"], "V": run["V"]})
     per_cell = {"cell": 1.0, "node": run["nodes_per_cell"], "corner": 8.0, "none": 0.0}[entity]
     return size * per_cell
 
