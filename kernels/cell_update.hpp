@@ -9,6 +9,7 @@
 
 #include "../data/mesh.hpp"
 #include "../data/state.hpp"
+#include "cell_teams.hpp"
 #include "geometry.hpp"
 #include "hex.hpp"
 #include "kernel_form.hpp"
@@ -17,23 +18,13 @@
 
 namespace lagremap {
 
-// Corner forces and the update of one cell from the start-of-step state
-// (docs/method.md §A4): F_cp = M_cp V_p - B_cp,
+// The update of one cell from the start-of-step state (docs/method.md §A4)
+// by the sums over its corners of F_cp, F_cp . V_p and A_cp . V_p:
 //   m_c dV_c/dt = sum_p F_cp,  m_c dE_c/dt = sum_p F_cp . V_p,
 // and dv_c/dt = sum_p A_cp . V_p for the next time step.
 // Returns the cell's new specific internal energy.
-KOKKOS_FORCEINLINE_FUNCTION double updateCellMotion(const CellNodesView& cell_nodes, const State& s,
-                                                    double dt_stage, Index c) {
-  Vec3 force{0, 0, 0};
-  double power = 0.0, dvdt = 0.0;
-  for (int p = 0; p < 8; ++p) {
-    const Index corner = 8 * c + p;
-    const Vec3 v_node = loadVec3(s.v_n, cell_nodes(c, p));
-    const Vec3 f_corner = loadSym(s.M_cp, corner) * v_node - loadVec3(s.B_cp, corner);
-    force += f_corner;
-    power += dot(f_corner, v_node);
-    dvdt += dot(loadVec3(s.A_cp, corner), v_node);
-  }
+KOKKOS_FORCEINLINE_FUNCTION double moveCell(const State& s, double dt_stage, Index c,
+                                            const Vec3& force, double power, double dvdt) {
   const double dt_over_m = dt_stage / s.m_c(c);
   const Vec3 velocity = loadVec3(s.v_c0, c) + dt_over_m * force;
   const double total_energy = s.E_c0(c) + dt_over_m * power;
@@ -42,6 +33,66 @@ KOKKOS_FORCEINLINE_FUNCTION double updateCellMotion(const CellNodesView& cell_no
   s.dvdt_c(c) = dvdt;
   return total_energy - 0.5 * dot(velocity, velocity);
 }
+
+// Corner p's force F_cp = M_cp V_p - B_cp, and the node's velocity.
+KOKKOS_FORCEINLINE_FUNCTION Vec3 cornerForce(const CellNodesView& cell_nodes, const State& s,
+                                             Index c, int p, Vec3& v_node) {
+  const Index corner = 8 * c + p;
+  v_node = loadVec3(s.v_n, cell_nodes(c, p));
+  return loadSym(s.M_cp, corner) * v_node - loadVec3(s.B_cp, corner);
+}
+
+// Corner forces and the update of one cell (moveCell), its corners in turn.
+KOKKOS_FORCEINLINE_FUNCTION double updateCellMotion(const CellNodesView& cell_nodes, const State& s,
+                                                    double dt_stage, Index c) {
+  Vec3 force{0, 0, 0};
+  double power = 0.0, dvdt = 0.0;
+  for (int p = 0; p < 8; ++p) {
+    Vec3 v_node;
+    const Vec3 f_corner = cornerForce(cell_nodes, s, c, p, v_node);
+    force += f_corner;
+    power += dot(f_corner, v_node);
+    dvdt += dot(loadVec3(s.A_cp, 8 * c + p), v_node);
+  }
+  return moveCell(s, dt_stage, c, force, power, dvdt);
+}
+
+namespace detail {
+// The same in the staged form: corner p's terms by lane p (cell_teams.hpp),
+// then their sums in corner order, the same bits.
+struct CellMotionOnLanes {
+  enum : int { kForce = 0, kPower = 24, kDvdt = 32, kColumns = 40 };
+  using Teams = Kokkos::TeamPolicy<ExecSpace>;
+
+  CellNodesView cell_nodes;
+  State s;
+  double dt_stage;
+  Index n_cells;
+
+  KOKKOS_INLINE_FUNCTION void operator()(const Teams::member_type& team) const {
+    cell_teams::forCellsOfTeam(
+        team, n_cells, kColumns, [&](Index c, const cell_teams::ScratchRow& row) {
+          Kokkos::parallel_for(Kokkos::ThreadVectorRange(team, 8), [&](const int p) {
+            Vec3 v_node;
+            const Vec3 f_corner = cornerForce(cell_nodes, s, c, p, v_node);
+            row.store(kForce + 3 * p, f_corner);
+            row(kPower + p) = dot(f_corner, v_node);
+            row(kDvdt + p) = dot(loadVec3(s.A_cp, 8 * c + p), v_node);
+          });
+          Kokkos::single(Kokkos::PerThread(team), [&]() {
+            Vec3 force{0, 0, 0};
+            double power = 0.0, dvdt = 0.0;
+            for (int p = 0; p < 8; ++p) {
+              force += row.vec3(kForce + 3 * p);
+              power += row(kPower + p);
+              dvdt += row(kDvdt + p);
+            }
+            moveCell(s, dt_stage, c, force, power, dvdt);
+          });
+        });
+  }
+};
+}  // namespace detail
 
 // ... and its materials (updateMaterials).
 KOKKOS_INLINE_FUNCTION void updateCell(const CellNodesView& cell_nodes, const Vec3View& x_n,
@@ -87,9 +138,11 @@ static inline void updateCells(const Mesh& mesh, const State& state, double dt_s
       return;
     }
   }
-  Kokkos::parallel_for(
-      "lagremap::cell_update::corner_forces", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
-      KOKKOS_LAMBDA(const Index c) { updateCellMotion(cell_nodes, s, dt_stage, c); });
+  const detail::CellMotionOnLanes motion{cell_nodes, s, dt_stage, mesh.n_cells};
+  Kokkos::parallel_for("lagremap::cell_update::corner_forces",
+                       cell_teams::overCells<detail::CellMotionOnLanes::Teams>(
+                           mesh.n_cells, detail::CellMotionOnLanes::kColumns),
+                       motion);
   // the materials' energies, then their deviators (hypo-elastic S, Neo-Hookean
   // B), each a kernel of its own
   updateMaterialParts<kMaterialEnergies>("lagremap::cell_update::material_energies", mesh, state,

@@ -7,6 +7,7 @@
 
 #include "../data/mesh.hpp"
 #include "../data/state.hpp"
+#include "cell_teams.hpp"
 #include "corner_stencil.hpp"
 #include "geometry.hpp"
 #include "hex.hpp"
@@ -43,48 +44,22 @@ enum : int {
   kP = 177,
   kSigma = 178,
   kColumns = 184,
-  kCellsPerTeam = 16,  // a team's cells (on a GPU 16 x 8 lanes, 128 threads)
-  kGpuLanes = 8,       // a cell's lanes on a GPU
 };
 }  // namespace corner_lanes
 
-// The vector lanes of a cell: kGpuLanes on a GPU, one on a CPU (where the
-// fused form runs; there the staged form's lanes are a loop).
-constexpr int kStagedLanes = kFusedKernelsBuilt ? 1 : corner_lanes::kGpuLanes;
-
-using ScratchRows = Kokkos::View<double**, Kokkos::LayoutRight, ExecSpace::scratch_memory_space,
-                                 Kokkos::MemoryUnmanaged>;
+using cell_teams::ScratchRow;
 // (a GPU's block of 128 threads, 6 an SM: at most 80 registers, no spill on
 // sm_90, 24 warps an SM where 128 registers ran 16)
 using CornerTeams = Kokkos::TeamPolicy<ExecSpace, Kokkos::LaunchBounds<128, 6>>;
 using TeamMember = CornerTeams::member_type;
 
-// One cell's row of a team's scratch memory.
-struct ScratchRow {
-  ScratchRows rows;
-  int i;
-  KOKKOS_FORCEINLINE_FUNCTION double& operator()(int column) const { return rows(i, column); }
-  KOKKOS_FORCEINLINE_FUNCTION Vec3 vec3(int column) const {
-    return {rows(i, column), rows(i, column + 1), rows(i, column + 2)};
-  }
-  KOKKOS_FORCEINLINE_FUNCTION void store(int column, const Vec3& v) const {
-    rows(i, column) = v.x;
-    rows(i, column + 1) = v.y;
-    rows(i, column + 2) = v.z;
-  }
-  KOKKOS_FORCEINLINE_FUNCTION SymMat3 sym(int column) const {
-    return {rows(i, column),     rows(i, column + 1), rows(i, column + 2),
-            rows(i, column + 3), rows(i, column + 4), rows(i, column + 5)};
-  }
-  KOKKOS_FORCEINLINE_FUNCTION void store(int column, const SymMat3& m) const {
-    const double entries[6] = {m.xx, m.yy, m.zz, m.xy, m.yz, m.xz};
-    for (int j = 0; j < 6; ++j) rows(i, column + j) = entries[j];
-  }
-  KOKKOS_FORCEINLINE_FUNCTION StencilFace face(int f) const {
-    return StencilFace(int(rows(i, corner_lanes::kFace + f)));
-  }
-  KOKKOS_FORCEINLINE_FUNCTION bool open(int f) const { return face(f) == StencilFace::None; }
-};
+// The face row's StencilFace across face f, and whether it is an open side.
+KOKKOS_FORCEINLINE_FUNCTION StencilFace faceOf(const ScratchRow& row, int f) {
+  return StencilFace(int(row(corner_lanes::kFace + f)));
+}
+KOKKOS_FORCEINLINE_FUNCTION bool openSide(const ScratchRow& row, int f) {
+  return faceOf(row, f) == StencilFace::None;
+}
 
 // projectedLimiter (reconstruction.hpp) at one vertex: its reach and scaled
 // squared length from the 6 jumps (`jump(f)`), the direction of its
@@ -226,7 +201,7 @@ struct StagedCorners {
   KOKKOS_INLINE_FUNCTION SymMat3 normalInverse(const ScratchRow& row) const {
     LeastSquares lsq;
     for (int f = 0; f < 6; ++f) {
-      if (!row.open(f)) lsq.addOffset(row.vec3(corner_lanes::kDx + 3 * f));
+      if (!openSide(row, f)) lsq.addOffset(row.vec3(corner_lanes::kDx + 3 * f));
     }
     return lsq.solver();
   }
@@ -238,7 +213,7 @@ struct StagedCorners {
     Kokkos::parallel_for(Kokkos::ThreadVectorRange(team, cell.solid ? 9 : 4), [&](const int r) {
       Vec3 rhs{0.0, 0.0, 0.0};
       for (int f = 0; f < 6; ++f) {
-        if (cell.row.open(f)) continue;
+        if (openSide(cell.row, f)) continue;
         const double jump = r < 3 ? cell.row(corner_lanes::kDv + 3 * f + r)
                                   : cell.row(corner_lanes::kDs + 6 * f + (r - 3));
         rhs += jump * cell.row.vec3(corner_lanes::kDx + 3 * f);
@@ -252,7 +227,7 @@ struct StagedCorners {
   KOKKOS_INLINE_FUNCTION void continueAcrossOpenSides(const TeamMember& team, const Cell& cell,
                                                       int column) const {
     Kokkos::parallel_for(Kokkos::ThreadVectorRange(team, 6), [&](const int f) {
-      if (cell.row.open(f) && !cell.row.open(f ^ 1)) {
+      if (openSide(cell.row, f) && !openSide(cell.row, f ^ 1)) {
         cell.row.store(column + 3 * f, -1.0 * cell.row.vec3(column + 3 * (f ^ 1)));
       }
     });
@@ -299,7 +274,7 @@ struct StagedCorners {
   KOKKOS_INLINE_FUNCTION double pressureLimiter(const Cell& cell, double stress_scale) const {
     Bounds pb(cell.p());
     for (int f = 0; f < 6; ++f) {
-      if (!cell.row.open(f)) pb.include(cell.p() + cell.row(corner_lanes::kDs + 6 * f));
+      if (!openSide(cell.row, f)) pb.include(cell.p() + cell.row(corner_lanes::kDs + 6 * f));
     }
     const Vec3 grad_p = cell.row.vec3(corner_lanes::kGrad + 9);
     VertexExcursion excursion;
@@ -417,24 +392,12 @@ struct StagedCorners {
 
   // A team's cells, one to each of its threads.
   KOKKOS_INLINE_FUNCTION void operator()(const TeamMember& team) const {
-    const ScratchRows rows(team.team_scratch(0), int(corner_lanes::kCellsPerTeam),
-                           int(corner_lanes::kColumns));
-    const Index first = team.league_rank() * corner_lanes::kCellsPerTeam;
-    const int count = n_cells - first < corner_lanes::kCellsPerTeam ? n_cells - first
-                                                                    : corner_lanes::kCellsPerTeam;
-    Kokkos::parallel_for(Kokkos::TeamThreadRange(team, count), [&](const int i) {
-      ofCell(team, first + i, ScratchRow{rows, i});
-    });
+    cell_teams::forCellsOfTeam(team, n_cells, corner_lanes::kColumns,
+                               [&](Index c, const ScratchRow& row) { ofCell(team, c, row); });
   }
 
-  // The launch: a team of 16 cells (on a GPU 16 threads of 8 lanes).
   CornerTeams policy() const {
-    const int teams = (n_cells + corner_lanes::kCellsPerTeam - 1) / corner_lanes::kCellsPerTeam;
-    const int threads = kStagedLanes > 1 ? int(corner_lanes::kCellsPerTeam) : 1;
-    CornerTeams teams_policy(teams, threads, kStagedLanes);
-    return teams_policy.set_scratch_size(
-        0, Kokkos::PerTeam(
-               ScratchRows::shmem_size(corner_lanes::kCellsPerTeam, corner_lanes::kColumns)));
+    return cell_teams::overCells<CornerTeams>(n_cells, corner_lanes::kColumns);
   }
 };
 
