@@ -59,7 +59,9 @@ KOKKOS_FORCEINLINE_FUNCTION double updateCellMotion(const CellNodesView& cell_no
 
 namespace detail {
 // The same in the staged form: corner p's terms by lane p (cell_teams.hpp),
-// then their sums in corner order, the same bits.
+// then their sums in corner order, the same bits; a one-material run's
+// energy e^0 = e_new too (what updateMaterials<kMaterialEnergies> would
+// set: it is not launched for one material).
 struct CellMotionOnLanes {
   enum : int { kForce = 0, kPower = 24, kDvdt = 32, kColumns = 40 };
   using Teams = Kokkos::TeamPolicy<ExecSpace>;
@@ -87,7 +89,8 @@ struct CellMotionOnLanes {
               power += row(kPower + p);
               dvdt += row(kDvdt + p);
             }
-            moveCell(s, dt_stage, c, force, power, dvdt);
+            const double e_new = moveCell(s, dt_stage, c, force, power, dvdt);
+            if (s.n_materials == 1) s.e_ck(c, 0) = e_new;  // (updateMaterials' pure cell)
           });
         });
   }
@@ -143,10 +146,12 @@ static inline void updateCells(const Mesh& mesh, const State& state, double dt_s
                        cell_teams::overCells<detail::CellMotionOnLanes::Teams>(
                            mesh.n_cells, detail::CellMotionOnLanes::kColumns),
                        motion);
-  // the materials' energies, then their deviators (hypo-elastic S, Neo-Hookean
-  // B), each a kernel of its own
-  updateMaterialParts<kMaterialEnergies>("lagremap::cell_update::material_energies", mesh, state,
-                                         dt_stage);
+  // the materials' energies (one material's is the cell's, set above), then
+  // their deviators (hypo-elastic S, Neo-Hookean B), each a kernel of its own
+  if (state.n_materials > 1) {
+    updateMaterialParts<kMaterialEnergies>("lagremap::cell_update::material_energies", mesh, state,
+                                           dt_stage);
+  }
   if (state.has_solids) {
     updateMaterialParts<kHypoElasticParts>("lagremap::cell_update::hypo_elastic", mesh, state,
                                            dt_stage);
