@@ -1,8 +1,12 @@
 // The corner terms (kernels/corner_terms.hpp, docs/method.md §A4, §A5): the
 // fused form's cells in the lanes of a vector give the bits of the same
-// kernel run cell by cell (docs/method.md §7.1).
+// kernel run cell by cell (docs/method.md §7.1), and the staged form's teams
+// the fused form's bits (docs/method.md §7.6).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstring>
 #include <random>
 
 #include "kernels/corner_terms.hpp"
@@ -76,6 +80,82 @@ TEST(CornerTerms, CellLanesGiveTheCellByCellBits) {
         for (int d = 0; d < 3; ++d) {
           ASSERT_EQ(lanes(corner, d), cells(corner, d))
               << (solid ? "solid" : "gas") << " corner " << corner << " component " << d;
+        }
+      }
+    }
+  }
+}
+
+// The staged form (a cell's faces, gradient rows, vertices and corners in
+// the lanes of a team, kernels/corner_terms_staged.hpp) gives the fused
+// form's B_cp bit for bit: first and second order; gas, solid and a mix of
+// solid and gas cells (each cell's branch by its aT); walls, free sides and
+// a traction side, so that open sides take their opposite face's jump
+// reversed (x-, y-) or have none to take (z+ against a wall, y+ traction
+// against a free side).
+TEST(CornerTerms, StagedTeamsGiveTheFusedBits) {
+  if constexpr (!kFusedKernelsBuilt) {
+    GTEST_SKIP() << "the fused form, the reference, is not built on GPU builds";
+  } else {
+    SideBoundaries sides = testing::allWalls();
+    sides[0].kind = BoundaryKind::Free;
+    sides[2].kind = BoundaryKind::Free;
+    sides[3].kind = BoundaryKind::Traction;
+    sides[5].kind = BoundaryKind::Free;
+    const BlockSpec block = testing::perturbedBlock(9, 7, 5, {0, 0, 0}, {0.9, 0.7, 0.5}, 0.25);
+    for (const int cells_solid : {0, 1, 2}) {  // none, all, every third
+      MaterialParams material;
+      material.strength = StrengthKind::HypoElastic;
+      material.mu = 0.5;
+      material.yield_stress = 1e9;
+      auto [setup, state] = testing::uniformBlock(block, sides, material, 1.0, 2.0, Vec3{0, 0, 0});
+      const Mesh& mesh = setup.mesh;
+      ASSERT_GT(computeGeometry(mesh, state, TimeStepControls{}).val, 0.0);
+      std::mt19937 rng(17 + cells_solid);
+      std::uniform_real_distribution<double> unit(-1.0, 1.0);
+      auto v = Kokkos::create_mirror_view_and_copy(HostSpace(), state.v_c);
+      auto p = Kokkos::create_mirror_view_and_copy(HostSpace(), state.p_c);
+      auto deviator = Kokkos::create_mirror_view_and_copy(HostSpace(), state.S_c);
+      auto a_t = Kokkos::create_mirror_view_and_copy(HostSpace(), state.aT_c);
+      for (Index c = 0; c < mesh.n_cells; ++c) {
+        for (int d = 0; d < 3; ++d) v(c, d) = unit(rng);
+        p(c) = 1.0 + 0.5 * unit(rng);
+        for (int i = 0; i < 6; ++i) deviator(c, i) = 0.3 * unit(rng);
+        const bool solid = cells_solid == 1 || (cells_solid == 2 && c % 3 == 0);
+        a_t(c) = solid ? 0.5 + 0.1 * unit(rng) : 0.0;
+      }
+      Kokkos::deep_copy(state.v_c, v);
+      Kokkos::deep_copy(state.p_c, p);
+      Kokkos::deep_copy(state.S_c, deviator);
+      Kokkos::deep_copy(state.aT_c, a_t);
+      decltype(Kokkos::create_mirror(HostSpace(), state.B_cp)) first_order;
+      for (const int order : {1, 2}) {
+        const CornerControls controls{order, Gather::Crs};
+        computeCornerTerms(mesh, state, controls, KernelForm::Fused);
+        const auto fused = Kokkos::create_mirror(HostSpace(), state.B_cp);
+        Kokkos::deep_copy(fused, state.B_cp);
+        Kokkos::deep_copy(state.B_cp, 0.0);
+        computeCornerTerms(mesh, state, controls, KernelForm::Staged);
+        const auto staged = Kokkos::create_mirror_view_and_copy(HostSpace(), state.B_cp);
+        double largest = 0.0;
+        for (Index corner = 0; corner < 8 * mesh.n_cells; ++corner) {
+          for (int d = 0; d < 3; ++d) {
+            largest = std::max(largest, std::fabs(fused(corner, d)));
+            ASSERT_EQ(std::memcmp(&staged(corner, d), &fused(corner, d), sizeof(double)), 0)
+                << "solid cells " << cells_solid << ", order " << order << ", corner " << corner
+                << " component " << d << ": " << staged(corner, d) << " vs " << fused(corner, d);
+          }
+        }
+        EXPECT_GT(largest, 1e-3);  // (the terms are not all zero)
+        if (order == 1) {
+          first_order = Kokkos::create_mirror(HostSpace(), state.B_cp);  // (a copy of its own)
+          Kokkos::deep_copy(first_order, staged);
+        } else {  // the limited reconstruction moves the node values
+          int moved = 0;
+          for (Index corner = 0; corner < 8 * mesh.n_cells; ++corner) {
+            moved += staged(corner, 0) != first_order(corner, 0);
+          }
+          EXPECT_GT(moved, 4 * mesh.n_cells) << "solid cells " << cells_solid;
         }
       }
     }
