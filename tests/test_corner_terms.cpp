@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <random>
+#include <vector>
 
 #include "kernels/corner_terms.hpp"
 #include "kernels/geometry.hpp"
@@ -22,6 +23,23 @@ void cornerTermsCellByCell(const detail::CornerTerms& terms, Index n_cells) {
   Kokkos::parallel_for(
       "test::corner_terms_cell_by_cell", Kokkos::RangePolicy<ExecSpace>(0, n_cells),
       KOKKOS_LAMBDA(const Index c) { terms.ofCells<double>(c); });
+}
+
+// Random cell velocities, pressures and (with `deviators`) stress deviators.
+void randomCellState(const State& state, Index n_cells, unsigned seed, bool deviators) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  auto v = Kokkos::create_mirror_view_and_copy(HostSpace(), state.v_c);
+  auto p = Kokkos::create_mirror_view_and_copy(HostSpace(), state.p_c);
+  auto deviator = Kokkos::create_mirror_view_and_copy(HostSpace(), state.S_c);
+  for (Index c = 0; c < n_cells; ++c) {
+    for (int d = 0; d < 3; ++d) v(c, d) = unit(rng);
+    p(c) = 1.0 + 0.5 * unit(rng);
+    for (int i = 0; deviators && i < 6; ++i) deviator(c, i) = 0.3 * unit(rng);
+  }
+  Kokkos::deep_copy(state.v_c, v);
+  Kokkos::deep_copy(state.p_c, p);
+  Kokkos::deep_copy(state.S_c, deviator);
 }
 
 // The corner kernel takes kCellLanes cells at once in the lanes of a vector
@@ -45,19 +63,7 @@ TEST(CornerTerms, CellLanesGiveTheCellByCellBits) {
           testing::uniformBlock(block, SideBoundaries{}, material, 1.0, 2.0, Vec3{0, 0, 0});
       const Mesh& mesh = setup.mesh;
       ASSERT_GT(computeGeometry(mesh, state, TimeStepControls{}).val, 0.0);
-      std::mt19937 rng(solid ? 11 : 7);
-      std::uniform_real_distribution<double> unit(-1.0, 1.0);
-      auto v = Kokkos::create_mirror_view_and_copy(HostSpace(), state.v_c);
-      auto p = Kokkos::create_mirror_view_and_copy(HostSpace(), state.p_c);
-      auto deviator = Kokkos::create_mirror_view_and_copy(HostSpace(), state.S_c);
-      for (Index c = 0; c < mesh.n_cells; ++c) {
-        for (int d = 0; d < 3; ++d) v(c, d) = unit(rng);
-        p(c) = 1.0 + 0.5 * unit(rng);
-        for (int i = 0; solid && i < 6; ++i) deviator(c, i) = 0.3 * unit(rng);
-      }
-      Kokkos::deep_copy(state.v_c, v);
-      Kokkos::deep_copy(state.p_c, p);
-      Kokkos::deep_copy(state.S_c, deviator);
+      randomCellState(state, mesh.n_cells, solid ? 11 : 7, solid);
 
       computeCornerTerms(mesh, state, CornerControls{2, Gather::Crs});
       // (create_mirror: a copy of its own, where a host mirror view of host
@@ -111,22 +117,14 @@ TEST(CornerTerms, StagedTeamsGiveTheFusedBits) {
       auto [setup, state] = testing::uniformBlock(block, sides, material, 1.0, 2.0, Vec3{0, 0, 0});
       const Mesh& mesh = setup.mesh;
       ASSERT_GT(computeGeometry(mesh, state, TimeStepControls{}).val, 0.0);
-      std::mt19937 rng(17 + cells_solid);
+      randomCellState(state, mesh.n_cells, 17 + cells_solid, true);
+      std::mt19937 rng(23 + cells_solid);
       std::uniform_real_distribution<double> unit(-1.0, 1.0);
-      auto v = Kokkos::create_mirror_view_and_copy(HostSpace(), state.v_c);
-      auto p = Kokkos::create_mirror_view_and_copy(HostSpace(), state.p_c);
-      auto deviator = Kokkos::create_mirror_view_and_copy(HostSpace(), state.S_c);
       auto a_t = Kokkos::create_mirror_view_and_copy(HostSpace(), state.aT_c);
       for (Index c = 0; c < mesh.n_cells; ++c) {
-        for (int d = 0; d < 3; ++d) v(c, d) = unit(rng);
-        p(c) = 1.0 + 0.5 * unit(rng);
-        for (int i = 0; i < 6; ++i) deviator(c, i) = 0.3 * unit(rng);
         const bool solid = cells_solid == 1 || (cells_solid == 2 && c % 3 == 0);
         a_t(c) = solid ? 0.5 + 0.1 * unit(rng) : 0.0;
       }
-      Kokkos::deep_copy(state.v_c, v);
-      Kokkos::deep_copy(state.p_c, p);
-      Kokkos::deep_copy(state.S_c, deviator);
       Kokkos::deep_copy(state.aT_c, a_t);
       decltype(Kokkos::create_mirror(HostSpace(), state.B_cp)) first_order;
       for (const int order : {1, 2}) {
@@ -156,6 +154,45 @@ TEST(CornerTerms, StagedTeamsGiveTheFusedBits) {
             moved += staged(corner, 0) != first_order(corner, 0);
           }
           EXPECT_GT(moved, 4 * mesh.n_cells) << "solid cells " << cells_solid;
+        }
+      }
+    }
+  }
+}
+
+// A uniform pressure at rest has no jump across any face (a wall's mirror of
+// V = 0 and of sigma = -p I included) and none to continue across a free
+// side: every gradient is zero and B_cp = p A_cp exactly, for a gas and for
+// a solid at an isotropic stress, at second order, in each kernel form the
+// build has (on a GPU build the staged teams on the device).
+TEST(CornerTerms, AUniformPressureAtRestGivesPressureTimesCornerVector) {
+  SideBoundaries sides = testing::allWalls();
+  sides[0].kind = BoundaryKind::Free;
+  sides[3].kind = BoundaryKind::Traction;
+  const BlockSpec block = testing::perturbedBlock(7, 6, 5, {0, 0, 0}, {0.7, 0.6, 0.5}, 0.25);
+  std::vector<KernelForm> forms{KernelForm::Staged};
+  if (kFusedKernelsBuilt) forms.push_back(KernelForm::Fused);
+  for (const bool solid : {false, true}) {
+    MaterialParams material;
+    if (solid) {
+      material.strength = StrengthKind::HypoElastic;
+      material.mu = 0.5;
+      material.yield_stress = 1e9;
+    }
+    auto [setup, state] = testing::uniformBlock(block, sides, material, 1.0, 2.0, Vec3{0, 0, 0});
+    const Mesh& mesh = setup.mesh;
+    ASSERT_GT(computeGeometry(mesh, state, TimeStepControls{}).val, 0.0);
+    Kokkos::deep_copy(state.p_c, 3.0);
+    const auto area = Kokkos::create_mirror_view_and_copy(HostSpace(), state.A_cp);
+    for (const KernelForm form : forms) {
+      Kokkos::deep_copy(state.B_cp, -1.0);
+      computeCornerTerms(mesh, state, CornerControls{2, Gather::Crs}, form);
+      const auto b = Kokkos::create_mirror_view_and_copy(HostSpace(), state.B_cp);
+      for (Index corner = 0; corner < 8 * mesh.n_cells; ++corner) {
+        for (int d = 0; d < 3; ++d) {
+          ASSERT_EQ(b(corner, d), 3.0 * area(corner, d))
+              << (solid ? "solid" : "gas") << (form == KernelForm::Fused ? ", fused" : ", staged")
+              << ", corner " << corner << " component " << d;
         }
       }
     }
