@@ -25,6 +25,17 @@ void cornerTermsCellByCell(const detail::CornerTerms& terms, Index n_cells) {
       KOKKOS_LAMBDA(const Index c) { terms.ofCells<double>(c); });
 }
 
+// A gas, or a hypo-elastic solid that does not yield.
+MaterialParams cornerTestMaterial(bool solid) {
+  MaterialParams material;
+  if (solid) {
+    material.strength = StrengthKind::HypoElastic;
+    material.mu = 0.5;
+    material.yield_stress = 1e9;
+  }
+  return material;
+}
+
 // Random cell velocities, pressures and (with `deviators`) stress deviators.
 void randomCellState(const State& state, Index n_cells, unsigned seed, bool deviators) {
   std::mt19937 rng(seed);
@@ -53,12 +64,7 @@ TEST(CornerTerms, CellLanesGiveTheCellByCellBits) {
   } else {
     for (const bool solid : {false, true}) {
       const BlockSpec block = testing::perturbedBlock(12, 6, 5, {0, 0, 0}, {1.2, 0.6, 0.5}, 0.25);
-      MaterialParams material;
-      if (solid) {
-        material.strength = StrengthKind::HypoElastic;
-        material.mu = 0.5;
-        material.yield_stress = 1e9;
-      }
+      const MaterialParams material = cornerTestMaterial(solid);
       auto [setup, state] =
           testing::uniformBlock(block, SideBoundaries{}, material, 1.0, 2.0, Vec3{0, 0, 0});
       const Mesh& mesh = setup.mesh;
@@ -109,11 +115,8 @@ TEST(CornerTerms, StagedTeamsGiveTheFusedBits) {
     sides[3].kind = BoundaryKind::Traction;
     sides[5].kind = BoundaryKind::Free;
     const BlockSpec block = testing::perturbedBlock(9, 7, 5, {0, 0, 0}, {0.9, 0.7, 0.5}, 0.25);
-    for (const int cells_solid : {0, 1, 2}) {  // none, all, every third
-      MaterialParams material;
-      material.strength = StrengthKind::HypoElastic;
-      material.mu = 0.5;
-      material.yield_stress = 1e9;
+    for (const int cells_solid : {0, 1, 2}) {                    // none, all, every third
+      const MaterialParams material = cornerTestMaterial(true);  // (aT below picks the solids)
       auto [setup, state] = testing::uniformBlock(block, sides, material, 1.0, 2.0, Vec3{0, 0, 0});
       const Mesh& mesh = setup.mesh;
       ASSERT_GT(computeGeometry(mesh, state, TimeStepControls{}).val, 0.0);
@@ -173,12 +176,7 @@ TEST(CornerTerms, AUniformPressureAtRestGivesPressureTimesCornerVector) {
   std::vector<KernelForm> forms{KernelForm::Staged};
   if (kFusedKernelsBuilt) forms.push_back(KernelForm::Fused);
   for (const bool solid : {false, true}) {
-    MaterialParams material;
-    if (solid) {
-      material.strength = StrengthKind::HypoElastic;
-      material.mu = 0.5;
-      material.yield_stress = 1e9;
-    }
+    const MaterialParams material = cornerTestMaterial(solid);
     auto [setup, state] = testing::uniformBlock(block, sides, material, 1.0, 2.0, Vec3{0, 0, 0});
     const Mesh& mesh = setup.mesh;
     ASSERT_GT(computeGeometry(mesh, state, TimeStepControls{}).val, 0.0);
