@@ -59,14 +59,17 @@ KOKKOS_FORCEINLINE_FUNCTION double updateCellMotion(const CellNodesView& cell_no
 
 namespace detail {
 // The same in the staged form: corner p's terms by lane p (cell_teams.hpp),
-// then their sums in corner order, the same bits; a one-material run's
-// energy e^0 = e_new too (what updateMaterials<kMaterialEnergies> would
-// set: it is not launched for one material).
+// then their sums in corner order, the same bits. kEnergies: then the
+// materials' energies (updateMaterials<kMaterialEnergies>, a mixed cell's
+// budget) by the cell's lane 0; else the one material's e^0 = e_new (what
+// that would set).
+template <bool kEnergies>
 struct CellMotionOnLanes {
   enum : int { kForce = 0, kPower = 24, kDvdt = 32, kColumns = 40 };
   using Teams = Kokkos::TeamPolicy<ExecSpace>;
 
   CellNodesView cell_nodes;
+  Vec3View x_n;
   State s;
   double dt_stage;
   Index n_cells;
@@ -90,7 +93,13 @@ struct CellMotionOnLanes {
               dvdt += row(kDvdt + p);
             }
             const double e_new = moveCell(s, dt_stage, c, force, power, dvdt);
-            if (s.n_materials == 1) s.e_ck(c, 0) = e_new;  // (updateMaterials' pure cell)
+            if constexpr (kEnergies) {
+              StageRelaxation relaxation;
+              updateMaterials<kMaterialEnergies>(cell_nodes, x_n, s, dt_stage, c, e_new,
+                                                 relaxation);
+            } else {
+              s.e_ck(c, 0) = e_new;  // (updateMaterials' pure cell)
+            }
           });
         });
   }
@@ -105,28 +114,46 @@ KOKKOS_INLINE_FUNCTION void updateCell(const CellNodesView& cell_nodes, const Ve
                   relaxation);
 }
 
-// One part of every cell's materials' update (the staged form), from the
-// cell's stored E and V.
+// The staged form's cell motion, with the materials' energies when there are
+// several (detail::CellMotionOnLanes).
+template <bool kEnergies>
+static void updateCellMotion(const char* label, const Mesh& mesh, const State& state,
+                             double dt_stage) {
+  using Motion = detail::CellMotionOnLanes<kEnergies>;
+  const Motion motion{mesh.cell_nodes, mesh.x_n, state, dt_stage, mesh.n_cells};
+  Kokkos::parallel_for(
+      label, cell_teams::overCells<typename Motion::Teams>(mesh.n_cells, Motion::kColumns), motion);
+}
+
+// The staged form's second kernel of the cell update: every cell's deviators
+// (kParts: hypo-elastic S, Neo-Hookean B; updateMaterials<kParts> from the
+// cell's stored E and V, the same bits), then, `share`, a mixed cell's
+// volume sharing at its new shape (shareCellVolume: after the deviators,
+// which read the stage's volume fractions before it).
 template <int kParts>
-static void updateMaterialParts(const char* label, const Mesh& mesh, const State& state,
-                                double dt_stage) {
+static void updateDeviators(const Mesh& mesh, const State& state, double dt_stage, bool share) {
   const auto cell_nodes = mesh.cell_nodes;
   const auto x_n = mesh.x_n;
+  const bool z_prisms = mesh.z_prisms;
   const auto s = state;
   Kokkos::parallel_for(
-      label, Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells), KOKKOS_LAMBDA(const Index c) {
+      "lagremap::cell_update::deviators", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
+      KOKKOS_LAMBDA(const Index c) {
         const Vec3 velocity = loadVec3(s.v_c, c);
         StageRelaxation relaxation;
         updateMaterials<kParts>(cell_nodes, x_n, s, dt_stage, c,
                                 s.E_c(c) - 0.5 * dot(velocity, velocity), relaxation);
+        if (share) shareCellVolume(s, NodesOfCell{cell_nodes, x_n, c}, z_prisms);
       });
 }
 
-// Every cell's update: the staged form runs the cells' motion and their
-// materials as two kernels (the materials' e_new = E - |V|^2/2 from the
-// stored E and V: the same bits).
+// Every cell's update: the staged form runs the cells' motion (with the
+// materials' energies) and their deviators as two kernels (the deviators'
+// e_new = E - |V|^2/2 from the stored E and V: the same bits); `share`: the
+// second also shares the mixed cells' volumes at their new shapes (or a
+// kernel of its own where no material has a deviator, shareVolumeChanges).
 static inline void updateCells(const Mesh& mesh, const State& state, double dt_stage,
-                               KernelForm form = defaultKernelForm()) {
+                               KernelForm form = defaultKernelForm(), bool share = false) {
   const auto cell_nodes = mesh.cell_nodes;
   const auto x_n = mesh.x_n;
   const auto s = state;
@@ -138,27 +165,28 @@ static inline void updateCells(const Mesh& mesh, const State& state, double dt_s
             StageRelaxation relaxation;
             updateCell(cell_nodes, x_n, s, dt_stage, c, relaxation);
           });
+      if (share && state.n_materials > 1) shareVolumeChanges(mesh, state);
       return;
     }
   }
-  const detail::CellMotionOnLanes motion{cell_nodes, s, dt_stage, mesh.n_cells};
-  Kokkos::parallel_for("lagremap::cell_update::corner_forces",
-                       cell_teams::overCells<detail::CellMotionOnLanes::Teams>(
-                           mesh.n_cells, detail::CellMotionOnLanes::kColumns),
-                       motion);
-  // the materials' energies (one material's is the cell's, set above), then
-  // their deviators (hypo-elastic S, Neo-Hookean B), each a kernel of its own
-  if (state.n_materials > 1) {
-    updateMaterialParts<kMaterialEnergies>("lagremap::cell_update::material_energies", mesh, state,
-                                           dt_stage);
+  const bool mixed = state.n_materials > 1;
+  if (mixed) {
+    updateCellMotion<true>("lagremap::cell_update::forces_and_energies", mesh, state, dt_stage);
+  } else {
+    updateCellMotion<false>("lagremap::cell_update::corner_forces", mesh, state, dt_stage);
   }
-  if (state.has_solids) {
-    updateMaterialParts<kHypoElasticParts>("lagremap::cell_update::hypo_elastic", mesh, state,
-                                           dt_stage);
-  }
-  if (state.has_neo_hookean) {
-    updateMaterialParts<kNeoHookeanParts>("lagremap::cell_update::neo_hookean", mesh, state,
-                                          dt_stage);
+  share = share && mixed;
+  const int parts = (state.has_solids ? int(kHypoElasticParts) : 0) |
+                    (state.has_neo_hookean ? int(kNeoHookeanParts) : 0);
+  if (parts == kHypoElasticParts) {
+    updateDeviators<kHypoElasticParts>(mesh, state, dt_stage, share);
+  } else if (parts == kNeoHookeanParts) {
+    updateDeviators<kNeoHookeanParts>(mesh, state, dt_stage, share);
+  } else if (parts != 0) {  // (both in one kernel held 161 registers on sm_90)
+    updateDeviators<kHypoElasticParts>(mesh, state, dt_stage, false);
+    updateDeviators<kNeoHookeanParts>(mesh, state, dt_stage, share);
+  } else if (share) {
+    shareVolumeChanges(mesh, state);
   }
 }
 
@@ -199,10 +227,10 @@ static inline void updateCellsAndGeometry(const Mesh& mesh, const State& state, 
           into);
     }
   }
-  updateCells(mesh, state, dt_stage, KernelForm::Staged);
-  // the mixed cells' volume sharing, then the checks or the closure on the
-  // shared volumes (a kernel each: together they held 154 registers on sm_90)
-  if (state.n_materials > 1) shareVolumeChanges(mesh, state);
+  // the cells' update with the mixed cells' volume sharing, then the checks
+  // or the closure on the shared volumes (a kernel of its own: with the
+  // sharing it held 154 registers on sm_90)
+  updateCells(mesh, state, dt_stage, KernelForm::Staged, true);
   const bool z_prisms = mesh.z_prisms;
   if (what == StageEnd::ForRemap) {
     return stepLimitOverCellNodes(

@@ -510,9 +510,19 @@ static void stepLimitOverCellNodes(const char* label, const Mesh& mesh, const Ce
       StepLimitIntoView(into));
 }
 
-// The staged form's volume sharing at the end of a stage: each mixed cell's
-// new volume shared among its materials (shareVolumeChange, from the
-// step-start state, the same bits as the fused form's).
+// The staged form's volume sharing at the end of a stage: a mixed cell's new
+// volume shared among its materials (shareVolumeChange, from the step-start
+// state, the same bits as the fused form's).
+KOKKOS_INLINE_FUNCTION void shareCellVolume(const State& s, const NodesOfCell& nodes,
+                                            bool z_prisms) {
+  int present = 0;
+  for (int k = 0; k < s.n_materials; ++k) present += s.alpha_ck0(nodes.c, k) > 0.0;
+  if (present < 2) return;
+  hex::PrismBase base{};  // (read on prisms only)
+  shareVolumeChange(s, nodes.c, stagedShape(nodes, z_prisms, base).volume);
+}
+
+// ... every cell's, a kernel of its own.
 static inline void shareVolumeChanges(const Mesh& mesh, const State& state) {
   const auto cell_nodes = mesh.cell_nodes;
   const auto x_n = mesh.x_n;
@@ -521,12 +531,7 @@ static inline void shareVolumeChanges(const Mesh& mesh, const State& state) {
   Kokkos::parallel_for(
       "lagremap::cell_update::share_volume", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
       KOKKOS_LAMBDA(const Index c) {
-        int present = 0;
-        for (int k = 0; k < s.n_materials; ++k) present += s.alpha_ck0(c, k) > 0.0;
-        if (present < 2) return;
-        hex::PrismBase base{};  // (read on prisms only)
-        shareVolumeChange(s, c,
-                          stagedShape(NodesOfCell{cell_nodes, x_n, c}, z_prisms, base).volume);
+        shareCellVolume(s, NodesOfCell{cell_nodes, x_n, c}, z_prisms);
       });
 }
 

@@ -1,5 +1,7 @@
 // Remap phase (docs/method.md §A9-A11): the Lagrangian state is carried back onto the
-// initial mesh every step of `--mode remap`, in four kernels:
+// initial mesh every step of `--mode remap`, in four parts (three kernels in
+// the fused form, four in the staged: remapDensitiesAndSweptFaces launches
+// the first and third together, remapUpdate moves the nodes):
 //   remapDensities:  per cell, the remapped quantities per unit volume on the
 //                    Lagrangian cell: alpha^k, alpha^k rho^k, alpha^k rho^k e^k,
 //                    rho V, rho |V|^2/2 and alpha^k S^k / alpha^k B^k;
@@ -159,11 +161,60 @@ inline RemapFields allocateRemapFields(Index n_cells, const RemapLayout& layout,
 // face books here what crossed it (docs/verification.md §8.4, pile).
 using RemapBoundaryFlux = SumArray<5>;
 
-// Also the primitive variable of each column, which the gradients and the
+// Cell c's remapped quantities per unit volume (remapDensities, the file's
+// head), and the primitive variable of each column, which the gradients and the
 // fluxes read (computed once per cell, not once per neighbour and per swept
 // triangle): alpha^k, rho^k = (alpha rho)^k / alpha^k, e^k = (alpha rho e)^k /
 // (alpha rho)^k, V = rho V / rho and T^k = (alpha T)^k / alpha^k; zero where
 // the cell does not have it (RemapLayout::hasPrimitive).
+namespace detail {
+KOKKOS_INLINE_FUNCTION void cellDensities(const State& s, const RemapLayout& layout,
+                                          const MatRealView& q, const MatRealView& w, Index c) {
+  const double inv_volume = 1.0 / s.vol_c(c);
+  double rho = 0.0;  // bulk density, summed as the momentum's primitive needs it
+  for (int k = 0; k < layout.n_materials; ++k) {
+    const double alpha = s.alpha_ck(c, k);
+    const double mass = s.m_ck(c, k);
+    const double mass_density = mass * inv_volume;
+    const double energy_density = alpha > 0.0 ? mass * s.e_ck(c, k) * inv_volume : 0.0;
+    const bool has_mass = alpha > 0.0 && mass_density > 0.0;
+    q(c, layout.alpha(k)) = alpha;
+    q(c, layout.mass(k)) = mass_density;
+    q(c, layout.energy(k)) = energy_density;
+    w(c, layout.alpha(k)) = alpha;
+    w(c, layout.mass(k)) = has_mass ? mass_density / alpha : 0.0;
+    w(c, layout.energy(k)) = has_mass ? energy_density / mass_density : 0.0;
+    rho += mass_density;
+    const int column = layout.tensor_column[k];
+    if (column < 0) continue;
+    const SymMat3 tensor = s.materials(k).strength == StrengthKind::NeoHookean
+                               ? loadSym(s.B_ck, c, k)
+                               : loadSym(s.S_ck, c, k);
+    const double t[6] = {tensor.xx, tensor.yy, tensor.zz, tensor.xy, tensor.yz, tensor.xz};
+    for (int i = 0; i < 6; ++i) {
+      q(c, column + i) = alpha * t[i];
+      // (alpha T) / alpha: the primitive the tensor integral was always divided back to
+      w(c, column + i) = alpha > 0.0 ? (alpha * t[i]) / alpha : 0.0;
+    }
+    const int plastic = layout.plastic_column[k];
+    if (plastic < 0) continue;
+    const double plastic_density = alpha > 0.0 ? mass_density * s.eps_ck(c, k) : 0.0;
+    q(c, plastic) = plastic_density;
+    w(c, plastic) = has_mass ? plastic_density / mass_density : 0.0;
+  }
+  const double mass = s.m_c(c);
+  const Vec3 v = loadVec3(s.v_c, c);
+  const double momentum[3] = {mass * v.x * inv_volume, mass * v.y * inv_volume,
+                              mass * v.z * inv_volume};
+  for (int d = 0; d < 3; ++d) {
+    q(c, layout.momentum(d)) = momentum[d];
+    w(c, layout.momentum(d)) = momentum[d] / rho;
+  }
+  q(c, layout.kinetic()) = 0.5 * mass * dot(v, v) * inv_volume;
+  w(c, layout.kinetic()) = 0.0;  // not reconstructed
+}
+}  // namespace detail
+
 static inline void remapDensities(const State& state, const RemapLayout& layout,
                                   const RemapFields& fields) {
   const auto s = state;
@@ -171,49 +222,42 @@ static inline void remapDensities(const State& state, const RemapLayout& layout,
   const auto w = fields.primitive;
   Kokkos::parallel_for(
       "lagremap::remap::densities", Kokkos::RangePolicy<ExecSpace>(0, Index(s.m_c.extent(0))),
-      KOKKOS_LAMBDA(const Index c) {
-        const double inv_volume = 1.0 / s.vol_c(c);
-        double rho = 0.0;  // bulk density, summed as the momentum's primitive needs it
-        for (int k = 0; k < layout.n_materials; ++k) {
-          const double alpha = s.alpha_ck(c, k);
-          const double mass = s.m_ck(c, k);
-          const double mass_density = mass * inv_volume;
-          const double energy_density = alpha > 0.0 ? mass * s.e_ck(c, k) * inv_volume : 0.0;
-          const bool has_mass = alpha > 0.0 && mass_density > 0.0;
-          q(c, layout.alpha(k)) = alpha;
-          q(c, layout.mass(k)) = mass_density;
-          q(c, layout.energy(k)) = energy_density;
-          w(c, layout.alpha(k)) = alpha;
-          w(c, layout.mass(k)) = has_mass ? mass_density / alpha : 0.0;
-          w(c, layout.energy(k)) = has_mass ? energy_density / mass_density : 0.0;
-          rho += mass_density;
-          const int column = layout.tensor_column[k];
-          if (column < 0) continue;
-          const SymMat3 tensor = s.materials(k).strength == StrengthKind::NeoHookean
-                                     ? loadSym(s.B_ck, c, k)
-                                     : loadSym(s.S_ck, c, k);
-          const double t[6] = {tensor.xx, tensor.yy, tensor.zz, tensor.xy, tensor.yz, tensor.xz};
-          for (int i = 0; i < 6; ++i) {
-            q(c, column + i) = alpha * t[i];
-            // (alpha T) / alpha: the primitive the tensor integral was always divided back to
-            w(c, column + i) = alpha > 0.0 ? (alpha * t[i]) / alpha : 0.0;
-          }
-          const int plastic = layout.plastic_column[k];
-          if (plastic < 0) continue;
-          const double plastic_density = alpha > 0.0 ? mass_density * s.eps_ck(c, k) : 0.0;
-          q(c, plastic) = plastic_density;
-          w(c, plastic) = has_mass ? plastic_density / mass_density : 0.0;
-        }
-        const double mass = s.m_c(c);
-        const Vec3 v = loadVec3(s.v_c, c);
-        const double momentum[3] = {mass * v.x * inv_volume, mass * v.y * inv_volume,
-                                    mass * v.z * inv_volume};
-        for (int d = 0; d < 3; ++d) {
-          q(c, layout.momentum(d)) = momentum[d];
-          w(c, layout.momentum(d)) = momentum[d] / rho;
-        }
-        q(c, layout.kinetic()) = 0.5 * mass * dot(v, v) * inv_volume;
-        w(c, layout.kinetic()) = 0.0;  // not reconstructed
+      KOKKOS_LAMBDA(const Index c) { detail::cellDensities(s, layout, q, w, c); });
+}
+
+// remapDensities and computeSweptFaces in one launch, a cell at a time (they
+// read nothing the other writes): the remap's first kernel.
+static inline void remapDensitiesAndSweptFaces(const Mesh& mesh, const State& state,
+                                               const RemapLayout& layout, const RemapFields& fields,
+                                               const Vec3View& x_lag, const Vec3View& x_target,
+                                               const SweptFaces& swept_faces,
+                                               KernelForm form = defaultKernelForm()) {
+  const auto s = state;
+  const auto q = fields.density;
+  const auto w = fields.primitive;
+  const auto cell_nodes = mesh.cell_nodes;
+  const auto cell_neighbors = mesh.cell_neighbors;
+  const auto cell_neighbor_face = mesh.cell_neighbor_face;
+  const auto dvol_r = swept_faces.dvol_r;
+  const auto moment_r = swept_faces.moment_r;
+  const bool z_prisms = mesh.z_prisms;
+  const auto policy = Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells);
+  if constexpr (kFusedKernelsBuilt) {
+    if (form == KernelForm::Fused) {
+      Kokkos::parallel_for(
+          "lagremap::remap::densities_and_swept_faces", policy, KOKKOS_LAMBDA(const Index c) {
+            detail::cellDensities(s, layout, q, w, c);
+            swept::cellSweptFaces<true>(cell_nodes, cell_neighbors, cell_neighbor_face, x_lag,
+                                        x_target, dvol_r, moment_r, z_prisms, c);
+          });
+      return;
+    }
+  }
+  Kokkos::parallel_for(
+      "lagremap::remap::densities_and_swept_faces", policy, KOKKOS_LAMBDA(const Index c) {
+        detail::cellDensities(s, layout, q, w, c);
+        swept::cellSweptFaces<false>(cell_nodes, cell_neighbors, cell_neighbor_face, x_lag,
+                                     x_target, dvol_r, moment_r, z_prisms, c);
       });
 }
 
@@ -830,13 +874,28 @@ KOKKOS_FORCEINLINE_FUNCTION void remapCell(const State& s, const CellFacesView& 
 
 }  // namespace detail
 
+// The mesh's nodes put on the remap's target, x_n <- target, by
+// remapUpdate's first kernel (nothing after the gradients reads the
+// Lagrangian positions: one launch fewer, docs/performance.md §8). Empty:
+// the nodes stay.
+struct NodesOntoTarget {
+  Vec3View x_n, target;
+  KOKKOS_INLINE_FUNCTION Index count() const { return Index(x_n.extent(0)); }
+  KOKKOS_INLINE_FUNCTION void move(Index n) const {
+    for (int d = 0; d < 3; ++d) x_n(n, d) = target(n, d);
+  }
+};
+
 // Sum of the upwind fluxes of the cell's 12 face-side regions, the new state on
 // the initial mesh, clean-up and kinetic-energy fix (docs/method.md §A9-A11). What
 // crossed the outer boundary (this rank's) is left in `crossed` without waiting.
+// The nodes move onto the target in the same launch (`nodes`; a thread per
+// cell or node, the larger count).
 static inline void remapUpdate(const Mesh& mesh, const State& state, const RemapLayout& layout,
                                const RemapControls& controls, const RemapFields& fields,
                                const SweptFaces& swept,
-                               const ReportView<RemapBoundaryFlux>& crossed_into) {
+                               const ReportView<RemapBoundaryFlux>& crossed_into,
+                               const NodesOntoTarget& nodes = {}) {
   const auto neighbors = mesh.cell_neighbors;
   const auto owned = mesh.cell_owned;
   const auto s = state;
@@ -845,13 +904,18 @@ static inline void remapUpdate(const Mesh& mesh, const State& state, const Remap
                                     controls.bounded_parcel_fractions};
   const double alpha_floor = controls.alpha_floor;
   const bool kinetic_energy_fix = controls.kinetic_energy_fix;
-  const auto policy = Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells);
+  const Index n_cells = mesh.n_cells;
+  const auto policy = Kokkos::RangePolicy<ExecSpace>(0, n_cells);
+  const auto cells_or_nodes =
+      Kokkos::RangePolicy<ExecSpace>(0, n_cells > nodes.count() ? n_cells : nodes.count());
   const Kokkos::Sum<RemapBoundaryFlux, ReportSpace> boundary(crossed_into);
   if constexpr (kFusedKernelsBuilt) {
     if (controls.kernels == KernelForm::Fused) {  // the thread's own work arrays
       Kokkos::parallel_reduce(
-          "lagremap::remap::fluxes_and_update", policy,
+          "lagremap::remap::fluxes_and_update", cells_or_nodes,
           KOKKOS_LAMBDA(const Index c, RemapBoundaryFlux& crossed) {
+            if (c < nodes.count()) nodes.move(c);
+            if (c >= n_cells) return;
             double integral[kMaxRemapVariables];
             detail::SourceRangeOf<detail::SourceBounds> range;
             double alpha[kMaxMaterials], mass[kMaxMaterials], internal[kMaxMaterials];
@@ -863,13 +927,14 @@ static inline void remapUpdate(const Mesh& mesh, const State& state, const Remap
       return;
     }
   }
-  // the staged form: the crossings first (a reduction of their own), then
-  // the update, which holds no reduction value
+  // the staged form: the crossings first (a reduction of their own, which
+  // moves the nodes), then the update, which holds no reduction value
   const auto dvol_r = swept.dvol_r;
   Kokkos::parallel_reduce(
-      "lagremap::remap::boundary_flux", policy,
+      "lagremap::remap::boundary_flux", cells_or_nodes,
       KOKKOS_LAMBDA(const Index c, RemapBoundaryFlux& crossed) {
-        if (!owned(c)) return;  // (a ghost's crossing is booked by its owner)
+        if (c < nodes.count()) nodes.move(c);
+        if (c >= n_cells || !owned(c)) return;  // (a ghost's crossing is booked by its owner)
         for (int f = 0; f < 6; ++f) {
           if (neighbors(c, f) >= 0) continue;
           for (int side = 0; side < 2; ++side) {
@@ -889,16 +954,6 @@ static inline void remapUpdate(const Mesh& mesh, const State& state, const Remap
         detail::remapCell(s, neighbors, false, layout, fields, swept, limit, guards, alpha_floor,
                           kinetic_energy_fix, c, integral_row, range, alpha, mass, internal,
                           unused);
-      });
-}
-
-// The mesh moved onto the remap's target, node by node (a kernel, not a
-// deep copy: no host synchronisation, docs/performance.md §8).
-static inline void moveNodesTo(const Vec3View& x_n, const Vec3View& target) {
-  Kokkos::parallel_for(
-      "lagremap::remap::move_nodes", Kokkos::RangePolicy<ExecSpace>(0, x_n.extent(0)),
-      KOKKOS_LAMBDA(const Index n) {
-        for (int d = 0; d < 3; ++d) x_n(n, d) = target(n, d);
       });
 }
 

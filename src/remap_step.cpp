@@ -73,12 +73,11 @@ RemapStep::RemapStep(Mesh& mesh, State& state, const RemapControls& controls, Ph
 void RemapStep::launch(const Vec3View& target, const ReportView<RemapBoundaryFlux>& crossed) {
   {
     auto scope = timers_.scope(Phase::Remap);
-    remapDensities(state_, layout_, fields_);
+    remapDensitiesAndSweptFaces(mesh_, state_, layout_, fields_, mesh_.x_n, target, swept_,
+                                controls_.kernels);
     remapGradients(mesh_, state_, layout_, controls_, fields_);
     if (!controls_.reconstruct) Kokkos::deep_copy(fields_.gradient, 0.0);
-    computeSweptFaces(mesh_, mesh_.x_n, target, swept_, controls_.kernels);
-    remapUpdate(mesh_, state_, layout_, controls_, fields_, swept_, crossed);
-    moveNodesTo(mesh_.x_n, target);
+    remapUpdate(mesh_, state_, layout_, controls_, fields_, swept_, crossed, {mesh_.x_n, target});
   }
   if (halo_) {  // ghost cells: their owners' remapped state (docs/method.md §7.4, src/fields.hpp)
     auto scope = timers_.scope(Phase::Halo);
