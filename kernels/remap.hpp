@@ -1,7 +1,7 @@
 // Remap phase (docs/method.md §A9-A11): the Lagrangian state is carried back onto the
-// initial mesh every step of `--mode remap`, in four parts (three kernels in
-// the fused form, four in the staged: remapDensitiesAndSweptFaces launches
-// the first and third together, remapUpdate moves the nodes):
+// initial mesh every step of `--mode remap`, in four parts (four kernels in
+// either form: remapDensitiesAndSweptFaces launches the first and third
+// together; remapUpdate moves the nodes):
 //   remapDensities:  per cell, the remapped quantities per unit volume on the
 //                    Lagrangian cell: alpha^k, alpha^k rho^k, alpha^k rho^k e^k,
 //                    rho V, rho |V|^2/2 and alpha^k S^k / alpha^k B^k;
@@ -168,8 +168,9 @@ using RemapBoundaryFlux = SumArray<5>;
 // (alpha rho)^k, V = rho V / rho and T^k = (alpha T)^k / alpha^k; zero where
 // the cell does not have it (RemapLayout::hasPrimitive).
 namespace detail {
-KOKKOS_INLINE_FUNCTION void cellDensities(const State& s, const RemapLayout& layout,
-                                          const MatRealView& q, const MatRealView& w, Index c) {
+KOKKOS_FORCEINLINE_FUNCTION void cellDensities(const State& s, const RemapLayout& layout,
+                                               const MatRealView& q, const MatRealView& w,
+                                               Index c) {
   const double inv_volume = 1.0 / s.vol_c(c);
   double rho = 0.0;  // bulk density, summed as the momentum's primitive needs it
   for (int k = 0; k < layout.n_materials; ++k) {
@@ -235,20 +236,14 @@ static inline void remapDensitiesAndSweptFaces(const Mesh& mesh, const State& st
   const auto s = state;
   const auto q = fields.density;
   const auto w = fields.primitive;
-  const auto cell_nodes = mesh.cell_nodes;
-  const auto cell_neighbors = mesh.cell_neighbors;
-  const auto cell_neighbor_face = mesh.cell_neighbor_face;
-  const auto dvol_r = swept_faces.dvol_r;
-  const auto moment_r = swept_faces.moment_r;
-  const bool z_prisms = mesh.z_prisms;
+  const swept::CellSweeper sweeper(mesh, x_lag, x_target, swept_faces);
   const auto policy = Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells);
   if constexpr (kFusedKernelsBuilt) {
     if (form == KernelForm::Fused) {
       Kokkos::parallel_for(
           "lagremap::remap::densities_and_swept_faces", policy, KOKKOS_LAMBDA(const Index c) {
             detail::cellDensities(s, layout, q, w, c);
-            swept::cellSweptFaces<true>(cell_nodes, cell_neighbors, cell_neighbor_face, x_lag,
-                                        x_target, dvol_r, moment_r, z_prisms, c);
+            sweeper.sweep<true>(c);
           });
       return;
     }
@@ -256,8 +251,7 @@ static inline void remapDensitiesAndSweptFaces(const Mesh& mesh, const State& st
   Kokkos::parallel_for(
       "lagremap::remap::densities_and_swept_faces", policy, KOKKOS_LAMBDA(const Index c) {
         detail::cellDensities(s, layout, q, w, c);
-        swept::cellSweptFaces<false>(cell_nodes, cell_neighbors, cell_neighbor_face, x_lag,
-                                     x_target, dvol_r, moment_r, z_prisms, c);
+        sweeper.sweep<false>(c);
       });
 }
 
@@ -874,10 +868,10 @@ KOKKOS_FORCEINLINE_FUNCTION void remapCell(const State& s, const CellFacesView& 
 
 }  // namespace detail
 
-// The mesh's nodes put on the remap's target, x_n <- target, by
-// remapUpdate's first kernel (nothing after the gradients reads the
-// Lagrangian positions: one launch fewer, docs/performance.md §8). Empty:
-// the nodes stay.
+// The mesh's nodes put on the remap's target, x_n <- target, by remapUpdate
+// (nothing after the gradients reads the Lagrangian positions; the staged
+// form moves them in its first kernel: one launch fewer, docs/performance.md
+// §8). Empty: the nodes stay.
 struct NodesOntoTarget {
   Vec3View x_n, target;
   KOKKOS_INLINE_FUNCTION Index count() const { return Index(x_n.extent(0)); }
@@ -889,8 +883,8 @@ struct NodesOntoTarget {
 // Sum of the upwind fluxes of the cell's 12 face-side regions, the new state on
 // the initial mesh, clean-up and kinetic-energy fix (docs/method.md §A9-A11). What
 // crossed the outer boundary (this rank's) is left in `crossed` without waiting.
-// The nodes move onto the target in the same launch (`nodes`; a thread per
-// cell or node, the larger count).
+// The nodes move onto the target (`nodes`): in the staged form in the
+// crossings' launch (a thread per cell or node, the larger count).
 static inline void remapUpdate(const Mesh& mesh, const State& state, const RemapLayout& layout,
                                const RemapControls& controls, const RemapFields& fields,
                                const SweptFaces& swept,
@@ -912,10 +906,8 @@ static inline void remapUpdate(const Mesh& mesh, const State& state, const Remap
   if constexpr (kFusedKernelsBuilt) {
     if (controls.kernels == KernelForm::Fused) {  // the thread's own work arrays
       Kokkos::parallel_reduce(
-          "lagremap::remap::fluxes_and_update", cells_or_nodes,
+          "lagremap::remap::fluxes_and_update", policy,
           KOKKOS_LAMBDA(const Index c, RemapBoundaryFlux& crossed) {
-            if (c < nodes.count()) nodes.move(c);
-            if (c >= n_cells) return;
             double integral[kMaxRemapVariables];
             detail::SourceRangeOf<detail::SourceBounds> range;
             double alpha[kMaxMaterials], mass[kMaxMaterials], internal[kMaxMaterials];
@@ -924,6 +916,11 @@ static inline void remapUpdate(const Mesh& mesh, const State& state, const Remap
                               internal, crossed);
           },
           boundary);
+      // (a kernel of its own: within the update's range it cost the CPU 54
+      // instructions a cell-step more than this one)
+      Kokkos::parallel_for(
+          "lagremap::remap::move_nodes", Kokkos::RangePolicy<ExecSpace>(0, nodes.count()),
+          KOKKOS_LAMBDA(const Index n) { nodes.move(n); });
       return;
     }
   }

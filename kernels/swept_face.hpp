@@ -363,6 +363,34 @@ KOKKOS_FORCEINLINE_FUNCTION void cellSweptFaces(const CellNodesView& cell_nodes,
   }
 }
 
+// What cellSweptFaces reads and writes: the mesh's connectivity, the two
+// node sets and the regions (a kernel's captures).
+struct CellSweeper {
+  CellNodesView cell_nodes;
+  CellFacesView cell_neighbors, cell_neighbor_face;
+  Vec3View x_lag, x_target;
+  RealView dvol_r;
+  Vec3View moment_r;
+  bool z_prisms;
+
+  CellSweeper(const Mesh& mesh, const Vec3View& lag, const Vec3View& target,
+              const SweptFaces& faces)
+      : cell_nodes(mesh.cell_nodes),
+        cell_neighbors(mesh.cell_neighbors),
+        cell_neighbor_face(mesh.cell_neighbor_face),
+        x_lag(lag),
+        x_target(target),
+        dvol_r(faces.dvol_r),
+        moment_r(faces.moment_r),
+        z_prisms(mesh.z_prisms) {}
+
+  template <bool kHold>
+  KOKKOS_FORCEINLINE_FUNCTION void sweep(Index c) const {
+    cellSweptFaces<kHold>(cell_nodes, cell_neighbors, cell_neighbor_face, x_lag, x_target, dvol_r,
+                          moment_r, z_prisms, c);
+  }
+};
+
 }  // namespace swept
 
 // Swept volumes and first moments of every face, by side, moving from the
@@ -371,28 +399,19 @@ KOKKOS_FORCEINLINE_FUNCTION void cellSweptFaces(const CellNodesView& cell_nodes,
 static inline void computeSweptFaces(const Mesh& mesh, const Vec3View& x_lag,
                                      const Vec3View& x_target, const SweptFaces& swept_faces,
                                      KernelForm form = defaultKernelForm()) {
-  const auto cell_nodes = mesh.cell_nodes;
-  const auto cell_neighbors = mesh.cell_neighbors;
-  const auto cell_neighbor_face = mesh.cell_neighbor_face;
-  const auto dvol_r = swept_faces.dvol_r;
-  const auto moment_r = swept_faces.moment_r;
-  const bool z_prisms = mesh.z_prisms;
+  const swept::CellSweeper sweeper(mesh, x_lag, x_target, swept_faces);
   const auto policy = Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells);
   if constexpr (kFusedKernelsBuilt) {
     if (form == KernelForm::Fused) {
       Kokkos::parallel_for(
-          "lagremap::remap::swept_faces", policy, KOKKOS_LAMBDA(const Index c) {
-            swept::cellSweptFaces<true>(cell_nodes, cell_neighbors, cell_neighbor_face, x_lag,
-                                        x_target, dvol_r, moment_r, z_prisms, c);
-          });
+          "lagremap::remap::swept_faces", policy,
+          KOKKOS_LAMBDA(const Index c) { sweeper.sweep<true>(c); });
       return;
     }
   }
   Kokkos::parallel_for(
-      "lagremap::remap::swept_faces", policy, KOKKOS_LAMBDA(const Index c) {
-        swept::cellSweptFaces<false>(cell_nodes, cell_neighbors, cell_neighbor_face, x_lag,
-                                     x_target, dvol_r, moment_r, z_prisms, c);
-      });
+      "lagremap::remap::swept_faces", policy,
+      KOKKOS_LAMBDA(const Index c) { sweeper.sweep<false>(c); });
 }
 
 }  // namespace lagremap
