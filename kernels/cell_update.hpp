@@ -147,28 +147,13 @@ static void updateDeviators(const Mesh& mesh, const State& state, double dt_stag
       });
 }
 
-// Every cell's update: the staged form runs the cells' motion (with the
-// materials' energies) and their deviators as two kernels (the deviators'
-// e_new = E - |V|^2/2 from the stored E and V: the same bits); `share`: the
-// second also shares the mixed cells' volumes at their new shapes (or a
-// kernel of its own where no material has a deviator, shareVolumeChanges).
-static inline void updateCells(const Mesh& mesh, const State& state, double dt_stage,
-                               KernelForm form = defaultKernelForm(), bool share = false) {
-  const auto cell_nodes = mesh.cell_nodes;
-  const auto x_n = mesh.x_n;
-  const auto s = state;
-  if constexpr (kFusedKernelsBuilt) {
-    if (form == KernelForm::Fused) {
-      Kokkos::parallel_for(
-          "lagremap::cell_update::corner_forces", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
-          KOKKOS_LAMBDA(const Index c) {
-            StageRelaxation relaxation;
-            updateCell(cell_nodes, x_n, s, dt_stage, c, relaxation);
-          });
-      if (share && state.n_materials > 1) shareVolumeChanges(mesh, state);
-      return;
-    }
-  }
+// The staged form's cell update: the cells' motion (with the materials'
+// energies) and their deviators as two kernels (the deviators' e_new = E -
+// |V|^2/2 from the stored E and V: the same bits); `share`: the second also
+// shares the mixed cells' volumes at their new shapes (a kernel of its own
+// where no material has a deviator, shareVolumeChanges).
+static inline void updateCellsStaged(const Mesh& mesh, const State& state, double dt_stage,
+                                     bool share) {
   const bool mixed = state.n_materials > 1;
   if (mixed) {
     updateCellMotion<true>("lagremap::cell_update::forces_and_energies", mesh, state, dt_stage);
@@ -188,6 +173,26 @@ static inline void updateCells(const Mesh& mesh, const State& state, double dt_s
   } else if (share) {
     shareVolumeChanges(mesh, state);
   }
+}
+
+// Every cell's update, in the form asked for (the volumes not shared).
+static inline void updateCells(const Mesh& mesh, const State& state, double dt_stage,
+                               KernelForm form = defaultKernelForm()) {
+  const auto cell_nodes = mesh.cell_nodes;
+  const auto x_n = mesh.x_n;
+  const auto s = state;
+  if constexpr (kFusedKernelsBuilt) {
+    if (form == KernelForm::Fused) {
+      Kokkos::parallel_for(
+          "lagremap::cell_update::corner_forces", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
+          KOKKOS_LAMBDA(const Index c) {
+            StageRelaxation relaxation;
+            updateCell(cell_nodes, x_n, s, dt_stage, c, relaxation);
+          });
+      return;
+    }
+  }
+  updateCellsStaged(mesh, state, dt_stage, false);
 }
 
 // The end of a stage in one sweep: each cell's update, then its geometry and
@@ -230,7 +235,7 @@ static inline void updateCellsAndGeometry(const Mesh& mesh, const State& state, 
   // the cells' update with the mixed cells' volume sharing, then the checks
   // or the closure on the shared volumes (a kernel of its own: with the
   // sharing it held 154 registers on sm_90)
-  updateCells(mesh, state, dt_stage, KernelForm::Staged, true);
+  updateCellsStaged(mesh, state, dt_stage, true);
   const bool z_prisms = mesh.z_prisms;
   if (what == StageEnd::ForRemap) {
     return stepLimitOverCellNodes(
