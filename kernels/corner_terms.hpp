@@ -21,8 +21,8 @@ namespace lagremap {
 namespace detail {
 
 // The corner terms of a mesh's cells under `controls`.
-inline CornerTerms cornerTerms(const Mesh& mesh, const State& state,
-                               const CornerControls& controls) {
+inline CornerTerms cornerTerms(const Mesh& mesh, const State& state, const CornerControls& controls,
+                               const StepStartSave& start = {}) {
   return {mesh.cell_nodes,
           mesh.cell_neighbors,
           mesh.cell_face_side,
@@ -31,7 +31,8 @@ inline CornerTerms cornerTerms(const Mesh& mesh, const State& state,
           state,
           mesh.z_prisms,
           controls.order >= 2,
-          controls.gather == Gather::Atomics};
+          controls.gather == Gather::Atomics,
+          start};
 }
 
 }  // namespace detail
@@ -46,6 +47,11 @@ static void computeFusedCornerTerms(const Mesh& mesh, const Terms& terms) {
       Kokkos::RangePolicy<ExecSpace>(0, cellChunks(mesh)), KOKKOS_LAMBDA(const Index chunk) {
         const Index first = chunk * hex::kCellLanes;
         const int count = chunkCells(n_cells, first);
+        if (terms.start.cells) {
+          for (int i = 0; i < count; ++i) {
+            copyCellStart(terms.s, first + i, terms.start.solids, StepStart::Save);
+          }
+        }
 #if LAGREMAP_CELL_PACKS
         if (count == hex::kCellLanes && terms.second_order &&
             terms.lanesShareStencilShape(first, count)) {
@@ -65,10 +71,13 @@ static void computeFusedCornerTerms(const Mesh& mesh, const Terms& terms) {
 // go kCellLanes at a time in the lanes of a vector where their stencils have
 // one shape; in the staged form a cell's faces, vertices and corners go in
 // the lanes of a vector (the same bits either way, docs/method.md §7.1, §7.6).
+// `start`: a step's first stage also keeps the cells' step start
+// (StepStartSave), which the cell update then reads.
 static inline void computeCornerTerms(const Mesh& mesh, const State& state,
                                       const CornerControls& controls,
-                                      KernelForm form = defaultKernelForm()) {
-  const detail::CornerTerms terms = detail::cornerTerms(mesh, state, controls);
+                                      KernelForm form = defaultKernelForm(),
+                                      const StepStartSave& start = {}) {
+  const detail::CornerTerms terms = detail::cornerTerms(mesh, state, controls, start);
   if (terms.atomics) {
     Kokkos::deep_copy(state.M_n, 0.0);
     Kokkos::deep_copy(state.B_n, 0.0);
@@ -77,8 +86,8 @@ static inline void computeCornerTerms(const Mesh& mesh, const State& state,
     if (form == KernelForm::Fused) return computeFusedCornerTerms(mesh, terms);
   }
   const detail::StagedCorners staged{
-      terms.cell_nodes, terms.neighbors, terms.face_side,    terms.side_kind, terms.x_n,
-      terms.s,          terms.z_prisms,  terms.second_order, terms.atomics,   mesh.n_cells};
+      terms.cell_nodes, terms.neighbors,    terms.face_side, terms.side_kind, terms.x_n,  terms.s,
+      terms.z_prisms,   terms.second_order, terms.atomics,   mesh.n_cells,    terms.start};
   Kokkos::parallel_for("lagremap::corners::reconstruct_and_impedance", staged.policy(), staged);
 }
 

@@ -10,6 +10,7 @@
 #include "cell_lanes.hpp"
 #include "corner_stencil.hpp"
 #include "hex.hpp"
+#include "step_start.hpp"
 
 namespace lagremap {
 
@@ -25,6 +26,7 @@ struct CornerTerms {
   Vec3View x_n;
   State s;
   bool z_prisms, second_order, atomics;
+  StepStartSave start;  // the first stage's: the cells' step start kept
 
   // The cells' stencils have one shape: the same StencilFace across each
   // face, and all solid or all fluid (what the lanes of a pack must share).

@@ -13,6 +13,7 @@
 #include "hex.hpp"
 #include "kernel_form.hpp"
 #include "reconstruction.hpp"
+#include "step_start.hpp"
 
 namespace lagremap {
 
@@ -111,6 +112,7 @@ struct StagedCorners {
   State s;
   bool z_prisms, second_order, atomics;
   Index n_cells;
+  StepStartSave start;  // the first stage's: the cells' step start kept
 
   // What a cell's lanes share: its index, nodes and row of the team's
   // scratch, which holds its values (read where they are used: fewer
@@ -377,6 +379,10 @@ struct StagedCorners {
   KOKKOS_INLINE_FUNCTION void ofCell(const TeamMember& team, Index c, const ScratchRow& row) const {
     const bool solid = s.aT_c(c) > 0.0;
     const Cell cell{c, NodesOfCell{cell_nodes, x_n, c}, solid, row};
+    if (start.cells) {
+      Kokkos::single(Kokkos::PerThread(team),
+                     [&] { copyCellStart(s, c, start.solids, StepStart::Save); });
+    }
     loadCell(team, cell);
     double phi_v = 0.0, phi_s = 0.0;
     if (second_order) {

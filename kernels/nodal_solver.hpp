@@ -12,8 +12,10 @@
 
 #include "../data/mesh.hpp"
 #include "../data/state.hpp"
+#include "audit_sums.hpp"
 #include "corner_controls.hpp"
 #include "hex.hpp"
+#include "step_start.hpp"
 
 namespace lagremap {
 
@@ -98,110 +100,176 @@ KOKKOS_FORCEINLINE_FUNCTION void prefetchCornerRecords(const State& s, const Ord
 #endif
 }
 
+// One node's solve (nodalSolve), the Views it reads, not the whole Mesh
+// (whose global ids live on the host).
+struct NodeSolver {
+  CellFacesView cell_face_side;
+  CellNodesView cell_nodes;
+  DeviceView<int*> node_projector_id;
+  IndexView node_corner_offsets, node_corners, node_solve_order;
+  Sym6View projectors;
+  IndexView node_traction_faces, node_traction_offsets;
+  DeviceView<Real[kNumSides][6]> side_traction;
+  Vec3View x_n;
+  IndexView twin_source;
+  DeviceView<int*> twin_flip;
+  IndexView twin_offsets, node_twins;
+  DeviceView<int*> node_owned;
+  State s;
+  Vec3View x_start;  // where the nodes were at t^n: x_n0, or x_n in a first stage that saves
+  double dt_stage;
+  bool twins, atomics, save_start;
+
+  NodeSolver(const Mesh& mesh, const State& state, const CornerControls& controls, double dt_stage,
+             bool save_start)
+      : cell_face_side(mesh.cell_face_side),
+        cell_nodes(mesh.cell_nodes),
+        node_projector_id(mesh.node_projector_id),
+        node_corner_offsets(mesh.node_corner_offsets),
+        node_corners(mesh.node_corners),
+        node_solve_order(mesh.node_solve_order),
+        projectors(mesh.projectors),
+        node_traction_faces(mesh.node_traction_faces),
+        node_traction_offsets(mesh.node_traction_offsets),
+        side_traction(mesh.side_traction),
+        x_n(mesh.x_n),
+        twin_source(mesh.node_twin_source),
+        twin_flip(mesh.node_twin_flip),
+        twin_offsets(mesh.node_twin_offsets),
+        node_twins(mesh.node_twins),
+        node_owned(mesh.node_owned),
+        s(state),
+        x_start(save_start ? mesh.x_n : state.x_n0),
+        dt_stage(dt_stage),
+        twins(mesh.node_twin_source.extent(0) > 0),
+        atomics(controls.gather == Gather::Atomics),
+        save_start(save_start) {}
+
+  // M_p and B_p: the node's corner sums (the CRS gather), or what the corner
+  // kernel scattered (Gather::Atomics).
+  KOKKOS_INLINE_FUNCTION void nodeSums(Index n, SymMat3& impedance, Vec3& rhs) const {
+    if (atomics) {
+      impedance = loadSym(s.M_n, n);
+      rhs = loadVec3(s.B_n, n);
+      return;
+    }
+    impedance = identitySym(0.0);
+    rhs = Vec3{0, 0, 0};
+    for (Index i = node_corner_offsets(n); i < node_corner_offsets(n + 1); ++i) {
+      const Index corner = node_corners(i);
+      impedance += loadSym(s.M_cp, corner);
+      rhs += loadVec3(s.B_cp, corner);
+    }
+  }
+
+  // External load of node n's traction faces: sum_bf s_pf sigma^b n_pf.
+  KOKKOS_INLINE_FUNCTION Vec3 tractionLoad(Index n) const {
+    Vec3 load{0, 0, 0};
+    for (Index i = node_traction_offsets(n); i < node_traction_offsets(n + 1); ++i) {
+      const Index face_id = node_traction_faces(i);
+      const Index c = face_id / 6;
+      const int f = face_id % 6;
+      Vec3 q[4], w[4];
+      int local = 0;
+      for (int k = 0; k < 4; ++k) {
+        const Index node = cell_nodes(c, hex::faceNode(f, k));
+        q[k] = loadVec3(x_n, node);
+        if (node == n) local = k;
+      }
+      hex::faceCornerVectors(q, w);
+      const int side = cell_face_side(c, f);
+      const SymMat3 sigma_b{side_traction(side, 0), side_traction(side, 1), side_traction(side, 2),
+                            side_traction(side, 3), side_traction(side, 4), side_traction(side, 5)};
+      load += sigma_b * w[local];
+    }
+    return load;
+  }
+
+  // The node's new velocity, position and external force (and its twins'),
+  // their force and power added to `power` (force xyz, F . V) where owned.
+  KOKKOS_INLINE_FUNCTION void solve(Index visit, BoundaryPowerSums& power) const {
+    const Index n = node_solve_order(visit);
+    if (!atomics) {
+      detail::prefetchCornerRecords(s, node_solve_order, node_corner_offsets, node_corners,
+                                    twin_source, visit);
+    }
+    if (save_start) copyNodeStart(s, x_n, n, StepStart::Save);
+    if (twins && twin_source(n) != n) return;  // its source writes its solution (below)
+    SymMat3 impedance;
+    Vec3 rhs;
+    nodeSums(n, impedance, rhs);
+    const Vec3 load = tractionLoad(n);
+    Vec3 velocity;
+    Vec3 reaction{0, 0, 0};  // force of the walls on the node
+    const int projector_id = node_projector_id(n);
+    if (projector_id >= 0) {
+      const SymMat3 projector = loadSym(projectors, projector_id);
+      const SymMat3 solver = inverse(detail::constrainedMatrix(projector, impedance));
+      velocity = detail::project(projector, solver * detail::project(projector, rhs + load));
+      // One step of iterative refinement: the tangential balance then
+      // holds to the last bit, which is what the energy audit sees.
+      velocity += detail::project(
+          projector, solver * detail::project(projector, rhs + load - impedance * velocity));
+      // The constrained directions' part of M V - B - load (the Lagrange
+      // multipliers); its tangential part is the solver's round-off.
+      const Vec3 residual = impedance * velocity - rhs - load;
+      reaction = residual - detail::project(projector, residual);
+    } else {
+      const SymMat3 solver = inverse(impedance);
+      velocity = solver * (rhs + load);
+      velocity += solver * (rhs + load - impedance * velocity);
+    }
+    // External force on the node (sum_c F_cp up to round-off): wall reaction
+    // plus traction load, for the conservation audit.
+    const Vec3 force = reaction + load;
+    store(n, velocity, force, power);
+    if (!twins) return;
+    // A slab's or bar's twin nodes (Mesh::node_twins): this node's velocity
+    // (its components normal to the planes are zero) and its external force
+    // mirrored.
+    for (Index i = twin_offsets(n); i < twin_offsets(n + 1); ++i) {
+      const Index twin = node_twins(i);
+      const int flip = twin_flip(twin);
+      store(twin, velocity,
+            Vec3{flip & 1 ? -force.x : force.x, flip & 2 ? -force.y : force.y,
+                 flip & 4 ? -force.z : force.z},
+            power);
+    }
+  }
+
+  KOKKOS_FORCEINLINE_FUNCTION void store(Index n, const Vec3& velocity, const Vec3& force,
+                                         BoundaryPowerSums& power) const {
+    storeVec3(s.v_n, n, velocity);
+    storeVec3(s.f_ext_n, n, force);
+    storeVec3(s.x_n_next, n, loadVec3(x_start, n) + dt_stage * velocity);
+    if (node_owned(n)) addBoundaryPower(force, velocity, power);
+  }
+};
+
 }  // namespace detail
 
 // Solves every node and finds where it moves: x_n_next = x_n0 + dt_stage V_n.
+// `save_start`: a step's first stage, whose nodes start at x_n, which x_n0
+// keeps (StepStartSave); `power`: also sums the boundary's power into it
+// (the last stage's, a reduction).
 static inline void nodalSolve(const Mesh& mesh, const State& state, const CornerControls& controls,
-                              double dt_stage) {
-  // The Views it reads, not the whole Mesh (whose global ids live on the host).
-  const auto cell_face_side = mesh.cell_face_side;
-  const auto cell_nodes = mesh.cell_nodes;
-  const auto node_projector_id = mesh.node_projector_id;
-  const auto node_corner_offsets = mesh.node_corner_offsets;
-  const auto node_corners = mesh.node_corners;
-  const auto node_solve_order = mesh.node_solve_order;
-  const auto projectors = mesh.projectors;
-  const auto node_traction_faces = mesh.node_traction_faces;
-  const auto node_traction_offsets = mesh.node_traction_offsets;
-  const auto side_traction = mesh.side_traction;
-  const auto x_n = mesh.x_n;
-  const auto twin_source = mesh.node_twin_source;
-  const auto twin_flip = mesh.node_twin_flip;
-  const auto twin_offsets = mesh.node_twin_offsets;
-  const auto node_twins = mesh.node_twins;
-  const bool twins = twin_source.extent(0) > 0;
-  const auto s = state;
-  const bool atomics = controls.gather == Gather::Atomics;
+                              double dt_stage, bool save_start = false,
+                              const BoundaryPowerView& power = {}) {
+  const detail::NodeSolver solver(mesh, state, controls, dt_stage, save_start);
+  const char* label =
+      solver.atomics ? "lagremap::nodal_solve::atomics_sum" : "lagremap::nodal_solve::crs_gather";
+  const auto visits = Kokkos::RangePolicy<ExecSpace>(0, mesh.n_nodes);
+  if (power.data() != nullptr) {
+    Kokkos::parallel_reduce(
+        label, visits,
+        KOKKOS_LAMBDA(const Index visit, BoundaryPowerSums& sum) { solver.solve(visit, sum); },
+        Kokkos::Sum<BoundaryPowerSums, ReportSpace>(power));
+    return;
+  }
   Kokkos::parallel_for(
-      atomics ? "lagremap::nodal_solve::atomics_sum" : "lagremap::nodal_solve::crs_gather",
-      Kokkos::RangePolicy<ExecSpace>(0, mesh.n_nodes), KOKKOS_LAMBDA(const Index visit) {
-        const Index n = node_solve_order(visit);
-        if (!atomics) {
-          detail::prefetchCornerRecords(s, node_solve_order, node_corner_offsets, node_corners,
-                                        twin_source, visit);
-        }
-        if (twins && twin_source(n) != n) return;  // its source writes its solution (below)
-        SymMat3 impedance = identitySym(0.0);
-        Vec3 rhs{0, 0, 0};
-        if (atomics) {
-          impedance = loadSym(s.M_n, n);
-          rhs = loadVec3(s.B_n, n);
-        } else {
-          for (Index i = node_corner_offsets(n); i < node_corner_offsets(n + 1); ++i) {
-            const Index corner = node_corners(i);
-            impedance += loadSym(s.M_cp, corner);
-            rhs += loadVec3(s.B_cp, corner);
-          }
-        }
-        // External load of traction faces: sum_bf s_pf sigma^b n_pf.
-        Vec3 load{0, 0, 0};
-        for (Index i = node_traction_offsets(n); i < node_traction_offsets(n + 1); ++i) {
-          const Index face_id = node_traction_faces(i);
-          const Index c = face_id / 6;
-          const int f = face_id % 6;
-          Vec3 q[4], w[4];
-          int local = 0;
-          for (int k = 0; k < 4; ++k) {
-            const Index node = cell_nodes(c, hex::faceNode(f, k));
-            q[k] = loadVec3(x_n, node);
-            if (node == n) local = k;
-          }
-          hex::faceCornerVectors(q, w);
-          const int side = cell_face_side(c, f);
-          const SymMat3 sigma_b{side_traction(side, 0), side_traction(side, 1),
-                                side_traction(side, 2), side_traction(side, 3),
-                                side_traction(side, 4), side_traction(side, 5)};
-          load += sigma_b * w[local];
-        }
-        Vec3 velocity;
-        Vec3 reaction{0, 0, 0};  // force of the walls on the node
-        const int projector_id = node_projector_id(n);
-        if (projector_id >= 0) {
-          const SymMat3 projector = loadSym(projectors, projector_id);
-          const SymMat3 solver = inverse(detail::constrainedMatrix(projector, impedance));
-          velocity = detail::project(projector, solver * detail::project(projector, rhs + load));
-          // One step of iterative refinement: the tangential balance then
-          // holds to the last bit, which is what the energy audit sees.
-          velocity += detail::project(
-              projector, solver * detail::project(projector, rhs + load - impedance * velocity));
-          // The constrained directions' part of M V - B - load (the Lagrange
-          // multipliers); its tangential part is the solver's round-off.
-          const Vec3 residual = impedance * velocity - rhs - load;
-          reaction = residual - detail::project(projector, residual);
-        } else {
-          const SymMat3 solver = inverse(impedance);
-          velocity = solver * (rhs + load);
-          velocity += solver * (rhs + load - impedance * velocity);
-        }
-        storeVec3(s.v_n, n, velocity);
-        // External force on the node (sum_c F_cp up to round-off): wall reaction
-        // plus traction load, for the conservation audit.
-        const Vec3 force = reaction + load;
-        storeVec3(s.f_ext_n, n, force);
-        storeVec3(s.x_n_next, n, loadVec3(s.x_n0, n) + dt_stage * velocity);
-        if (!twins) return;
-        // A slab's or bar's twin nodes (Mesh::node_twins): this node's
-        // velocity (its components normal to the planes are zero) and its
-        // external force mirrored.
-        for (Index i = twin_offsets(n); i < twin_offsets(n + 1); ++i) {
-          const Index twin = node_twins(i);
-          const int flip = twin_flip(twin);
-          storeVec3(s.v_n, twin, velocity);
-          storeVec3(s.f_ext_n, twin,
-                    Vec3{flip & 1 ? -force.x : force.x, flip & 2 ? -force.y : force.y,
-                         flip & 4 ? -force.z : force.z});
-          storeVec3(s.x_n_next, twin, loadVec3(s.x_n0, twin) + dt_stage * velocity);
-        }
+      label, visits, KOKKOS_LAMBDA(const Index visit) {
+        BoundaryPowerSums unused;
+        solver.solve(visit, unused);
       });
 }
 

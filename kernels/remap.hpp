@@ -1,7 +1,8 @@
 // Remap phase (docs/method.md §A9-A11): the Lagrangian state is carried back onto the
-// initial mesh every step of `--mode remap`, in four parts (four kernels in
-// either form: remapDensitiesAndSweptFaces launches the first and third
-// together; remapUpdate moves the nodes):
+// initial mesh every step of `--mode remap`, in four parts (three kernels in
+// the staged form: remapDensitiesAndSweptFaces launches the first and third
+// together and books what crossed the outer boundary; remapUpdate moves the
+// nodes onto the target, in a kernel of its own in the fused form):
 //   remapDensities:  per cell, the remapped quantities per unit volume on the
 //                    Lagrangian cell: alpha^k, alpha^k rho^k, alpha^k rho^k e^k,
 //                    rho V, rho |V|^2/2 and alpha^k S^k / alpha^k B^k;
@@ -38,6 +39,7 @@
 #include "../data/mesh.hpp"
 #include "../data/state.hpp"
 #include "../data/work_arena.hpp"
+#include "audit_sums.hpp"
 #include "kernel_form.hpp"
 #include "reconstruction.hpp"
 #include "sum_array.hpp"
@@ -155,11 +157,6 @@ inline RemapFields allocateRemapFields(Index n_cells, const RemapLayout& layout,
   fields.memory = memory;
   return fields;
 }
-
-// Quantities the outer boundary exchanged in the sweep (mass, momentum xyz,
-// total energy): zero for walls, which sweep no volume; a moving traction
-// face books here what crossed it (docs/verification.md §8.4, pile).
-using RemapBoundaryFlux = SumArray<5>;
 
 // Cell c's remapped quantities per unit volume (remapDensities, the file's
 // head), and the primitive variable of each column, which the gradients and the
@@ -523,33 +520,15 @@ struct RowOf {
   KOKKOS_FORCEINLINE_FUNCTION double& operator[](int i) const { return view(row, i); }
 };
 
-// What a region swept across the outer boundary carries out of cell c: it
-// takes the cell's own state (zero gradient), booked as crossed (mass,
-// momentum, total energy).
-KOKKOS_FORCEINLINE_FUNCTION void bookCrossing(const RemapLayout& layout, const RemapFields& fields,
-                                              Index c, double dvol, RemapBoundaryFlux& crossed) {
-  const auto& q = fields.density;
-  double mass = 0.0, energy = dvol * q(c, layout.kinetic());
-  for (int m = 0; m < layout.n_materials; ++m) {
-    mass += dvol * q(c, layout.mass(m));
-    energy += dvol * q(c, layout.energy(m));
-  }
-  crossed.v[0] += mass;
-  for (int d = 0; d < 3; ++d) crossed.v[1 + d] += dvol * q(c, layout.momentum(d));
-  crossed.v[4] += energy;
-}
-
-// The region's integrals, and its crossing booked by the owner of the cell
-// (`book`; the staged form books every crossing in a kernel of its own,
-// remapBoundaryFlux).
+// The integrals of a region swept across the outer boundary: the cell's own
+// state (zero gradient; its crossing is booked in the remap's first kernel,
+// DensitiesAndSweptFaces).
 template <class Integral>
 KOKKOS_FORCEINLINE_FUNCTION void fluxOuterRegion(const RemapLayout& layout,
                                                  const RemapFields& fields, Index c, double dvol,
-                                                 bool book, Integral& integral,
-                                                 RemapBoundaryFlux& crossed) {
+                                                 Integral& integral) {
   const auto& q = fields.density;
   for (int v = 0; v < layout.n_variables; ++v) integral[v] += dvol * q(c, v);
-  if (book) bookCrossing(layout, fields, c, dvol, crossed);
 }
 
 // Lever limit (docs/method.md §5.2): the slopes are evaluated at the region's
@@ -825,12 +804,11 @@ namespace detail {
 // other cell reads in the kernel). The same arithmetic, so the same bits.
 template <class Integral, class Range, class Array>
 KOKKOS_FORCEINLINE_FUNCTION void remapCell(const State& s, const CellFacesView& neighbors,
-                                           bool book_crossing, const RemapLayout& layout,
-                                           const RemapFields& fields, const SweptFaces& swept,
-                                           bool limit, ParcelGuards guards, double alpha_floor,
-                                           bool kinetic_energy_fix, Index c, Integral& integral,
-                                           Range& range, Array& alpha, Array& mass, Array& internal,
-                                           RemapBoundaryFlux& crossed) {
+                                           const RemapLayout& layout, const RemapFields& fields,
+                                           const SweptFaces& swept, bool limit, ParcelGuards guards,
+                                           double alpha_floor, bool kinetic_energy_fix, Index c,
+                                           Integral& integral, Range& range, Array& alpha,
+                                           Array& mass, Array& internal) {
   // integrals over the Lagrangian cell, then the fluxes of its regions
   const double volume_lag = s.vol_c(c);
   for (int v = 0; v < layout.n_variables; ++v) integral[v] = fields.density(c, v) * volume_lag;
@@ -844,9 +822,7 @@ KOKKOS_FORCEINLINE_FUNCTION void remapCell(const State& s, const CellFacesView& 
       const double dvol = swept.dvol_r(r);
       volume += dvol;
       if (nb < 0) {  // nothing crosses a wall (dV = 0 there)
-        if (dvol != 0.0) {
-          fluxOuterRegion(layout, fields, c, dvol, book_crossing, integral, crossed);
-        }
+        if (dvol != 0.0) fluxOuterRegion(layout, fields, c, dvol, integral);
         continue;
       }
       // A region of no volume carries nothing once its lever is limited
@@ -868,10 +844,78 @@ KOKKOS_FORCEINLINE_FUNCTION void remapCell(const State& s, const CellFacesView& 
 
 }  // namespace detail
 
-// The mesh's nodes put on the remap's target, x_n <- target, by remapUpdate
-// (nothing after the gradients reads the Lagrangian positions; the staged
-// form moves them in its first kernel: one launch fewer, docs/performance.md
-// §8). Empty: the nodes stay.
+// What a region swept across the outer boundary carries out of cell c: it
+// takes the cell's own state (zero gradient, its densities `q`), booked as
+// crossed (mass, momentum, total energy).
+namespace detail {
+KOKKOS_FORCEINLINE_FUNCTION void bookCrossing(const RemapLayout& layout, const MatRealView& q,
+                                              Index c, double dvol, RemapBoundaryFlux& crossed) {
+  double mass = 0.0, energy = dvol * q(c, layout.kinetic());
+  for (int m = 0; m < layout.n_materials; ++m) {
+    mass += dvol * q(c, layout.mass(m));
+    energy += dvol * q(c, layout.energy(m));
+  }
+  crossed.v[0] += mass;
+  for (int d = 0; d < 3; ++d) crossed.v[1 + d] += dvol * q(c, layout.momentum(d));
+  crossed.v[4] += energy;
+}
+
+// The crossings of cell c's outer regions (a cell's outer faces are its
+// own: its sweep wrote them).
+KOKKOS_FORCEINLINE_FUNCTION void bookCellCrossings(const RemapLayout& layout, const MatRealView& q,
+                                                   const CellFacesView& neighbors,
+                                                   const RealView& dvol_r, Index c,
+                                                   RemapBoundaryFlux& crossed) {
+  for (int f = 0; f < 6; ++f) {
+    if (neighbors(c, f) >= 0) continue;
+    for (int side = 0; side < 2; ++side) {
+      const double dvol = dvol_r(sweptRegionId(c, f, side));
+      if (dvol != 0.0) bookCrossing(layout, q, c, dvol, crossed);
+    }
+  }
+}
+}  // namespace detail
+
+// Sum of the upwind fluxes of the cell's 12 face-side regions, the new state on
+// the initial mesh, clean-up and kinetic-energy fix (docs/method.md §A9-A11).
+static inline void remapUpdate(const Mesh& mesh, const State& state, const RemapLayout& layout,
+                               const RemapControls& controls, const RemapFields& fields,
+                               const SweptFaces& swept) {
+  const auto neighbors = mesh.cell_neighbors;
+  const auto s = state;
+  const bool limit = controls.limit;
+  const detail::ParcelGuards guards{controls.stencil_parcel_bound,
+                                    controls.bounded_parcel_fractions};
+  const double alpha_floor = controls.alpha_floor;
+  const bool kinetic_energy_fix = controls.kinetic_energy_fix;
+  const auto policy = Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells);
+  if constexpr (kFusedKernelsBuilt) {
+    if (controls.kernels == KernelForm::Fused) {  // the thread's own work arrays
+      Kokkos::parallel_for(
+          "lagremap::remap::fluxes_and_update", policy, KOKKOS_LAMBDA(const Index c) {
+            double integral[kMaxRemapVariables];
+            detail::SourceRangeOf<detail::SourceBounds> range;
+            double alpha[kMaxMaterials], mass[kMaxMaterials], internal[kMaxMaterials];
+            detail::remapCell(s, neighbors, layout, fields, swept, limit, guards, alpha_floor,
+                              kinetic_energy_fix, c, integral, range, alpha, mass, internal);
+          });
+      return;
+    }
+  }
+  const auto integral = fields.integral, source_range = fields.source_range;
+  Kokkos::parallel_for(
+      "lagremap::remap::fluxes_and_update", policy, KOKKOS_LAMBDA(const Index c) {
+        using detail::RowOf;
+        RowOf integral_row{integral, c}, alpha{s.alpha_ck, c}, mass{s.m_ck, c}, internal{s.e_ck, c};
+        detail::SourceRangeOf<detail::SourceBoundsRow> range{{source_range, c}};
+        detail::remapCell(s, neighbors, layout, fields, swept, limit, guards, alpha_floor,
+                          kinetic_energy_fix, c, integral_row, range, alpha, mass, internal);
+      });
+}
+
+// The mesh's nodes put on the remap's target, x_n <- target
+// (remapAuditAndMoveNodes: nothing after the gradients reads the Lagrangian
+// positions). Empty: the nodes stay.
 struct NodesOntoTarget {
   Vec3View x_n, target;
   KOKKOS_INLINE_FUNCTION Index count() const { return Index(x_n.extent(0)); }
@@ -880,78 +924,35 @@ struct NodesOntoTarget {
   }
 };
 
-// Sum of the upwind fluxes of the cell's 12 face-side regions, the new state on
-// the initial mesh, clean-up and kinetic-energy fix (docs/method.md §A9-A11). What
-// crossed the outer boundary (this rank's) is left in `crossed` without waiting.
-// The nodes move onto the target (`nodes`): in the staged form in the
-// crossings' launch (a thread per cell or node, the larger count).
-static inline void remapUpdate(const Mesh& mesh, const State& state, const RemapLayout& layout,
-                               const RemapControls& controls, const RemapFields& fields,
-                               const SweptFaces& swept,
-                               const ReportView<RemapBoundaryFlux>& crossed_into,
-                               const NodesOntoTarget& nodes = {}) {
-  const auto neighbors = mesh.cell_neighbors;
+// The remap's last kernel, after remapUpdate (a thread per cell or node,
+// the larger count): the crossings of each owned cell's outer regions and its
+// remapped totals summed into `into` (RemapAuditView, without waiting), and
+// the nodes moved onto the target. (The sums in update's kernel held 144
+// registers on sm_90 where it holds 124.)
+static inline void remapAuditAndMoveNodes(const Mesh& mesh, const State& state,
+                                          const RemapLayout& layout, const RemapFields& fields,
+                                          const SweptFaces& swept, const NodesOntoTarget& nodes,
+                                          const RemapAuditView& into) {
   const auto owned = mesh.cell_owned;
-  const auto s = state;
-  const bool limit = controls.limit;
-  const detail::ParcelGuards guards{controls.stencil_parcel_bound,
-                                    controls.bounded_parcel_fractions};
-  const double alpha_floor = controls.alpha_floor;
-  const bool kinetic_energy_fix = controls.kinetic_energy_fix;
-  const Index n_cells = mesh.n_cells;
-  const auto policy = Kokkos::RangePolicy<ExecSpace>(0, n_cells);
-  const auto cells_or_nodes =
-      Kokkos::RangePolicy<ExecSpace>(0, n_cells > nodes.count() ? n_cells : nodes.count());
-  const Kokkos::Sum<RemapBoundaryFlux, ReportSpace> boundary(crossed_into);
-  if constexpr (kFusedKernelsBuilt) {
-    if (controls.kernels == KernelForm::Fused) {  // the thread's own work arrays
-      Kokkos::parallel_reduce(
-          "lagremap::remap::fluxes_and_update", policy,
-          KOKKOS_LAMBDA(const Index c, RemapBoundaryFlux& crossed) {
-            double integral[kMaxRemapVariables];
-            detail::SourceRangeOf<detail::SourceBounds> range;
-            double alpha[kMaxMaterials], mass[kMaxMaterials], internal[kMaxMaterials];
-            detail::remapCell(s, neighbors, owned(c), layout, fields, swept, limit, guards,
-                              alpha_floor, kinetic_energy_fix, c, integral, range, alpha, mass,
-                              internal, crossed);
-          },
-          boundary);
-      // (a kernel of its own: within the update's range it cost the CPU 54
-      // instructions a cell-step more than this one)
-      Kokkos::parallel_for(
-          "lagremap::remap::move_nodes", Kokkos::RangePolicy<ExecSpace>(0, nodes.count()),
-          KOKKOS_LAMBDA(const Index n) { nodes.move(n); });
-      return;
-    }
-  }
-  // the staged form: the crossings first (a reduction of their own, which
-  // moves the nodes), then the update, which holds no reduction value
+  const auto neighbors = mesh.cell_neighbors;
+  const auto q = fields.density;
   const auto dvol_r = swept.dvol_r;
-  Kokkos::parallel_reduce(
-      "lagremap::remap::boundary_flux", cells_or_nodes,
-      KOKKOS_LAMBDA(const Index c, RemapBoundaryFlux& crossed) {
-        if (c < nodes.count()) nodes.move(c);
-        if (c >= n_cells || !owned(c)) return;  // (a ghost's crossing is booked by its owner)
-        for (int f = 0; f < 6; ++f) {
-          if (neighbors(c, f) >= 0) continue;
-          for (int side = 0; side < 2; ++side) {
-            const double dvol = dvol_r(sweptRegionId(c, f, side));
-            if (dvol != 0.0) detail::bookCrossing(layout, fields, c, dvol, crossed);
-          }
-        }
-      },
-      boundary);
-  const auto integral = fields.integral, source_range = fields.source_range;
-  Kokkos::parallel_for(
-      "lagremap::remap::fluxes_and_update", policy, KOKKOS_LAMBDA(const Index c) {
-        using detail::RowOf;
-        RowOf integral_row{integral, c}, alpha{s.alpha_ck, c}, mass{s.m_ck, c}, internal{s.e_ck, c};
-        detail::SourceRangeOf<detail::SourceBoundsRow> range{{source_range, c}};
-        RemapBoundaryFlux unused;
-        detail::remapCell(s, neighbors, false, layout, fields, swept, limit, guards, alpha_floor,
-                          kinetic_energy_fix, c, integral_row, range, alpha, mass, internal,
-                          unused);
-      });
+  const auto s = state;
+  const Index n_cells = mesh.n_cells;
+  const Index count = n_cells > nodes.count() ? n_cells : nodes.count();
+  const auto terms = KOKKOS_LAMBDA(const Index i, double* sums) {
+    if (i < nodes.count()) nodes.move(i);
+    if (i >= n_cells || !owned(i)) return;  // (a ghost's sums are its owner's)
+    RemapBoundaryFlux crossed;
+    detail::bookCellCrossings(layout, q, neighbors, dvol_r, i, crossed);
+    CellTotalSums totals;
+    addCellTotals(s, i, totals);
+    for (int j = 0; j < 5; ++j) sums[j] += crossed.v[j];
+    for (int j = 0; j < 6; ++j) sums[5 + j] += totals.v[j];
+  };
+  Kokkos::parallel_reduce("lagremap::remap::audit_and_move_nodes",
+                          Kokkos::RangePolicy<ExecSpace>(0, count),
+                          SumsInArray<kRemapAuditSums, decltype(terms)>(terms), into);
 }
 
 }  // namespace lagremap

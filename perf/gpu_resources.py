@@ -51,7 +51,24 @@ def kernel_label(demangled):
         return None  # Kokkos' own (a view copy or fill), whatever its value type
     lambda_of = LAMBDA_OF.match(functor)  # a name followed by "(": a function's lambda
     named = lambda_of or FUNCTOR.match(functor)
+    if named and not lambda_of and wraps_a_lambda(functor, named.end()):
+        named = LAMBDA_OF.search(functor, named.end())  # SumsInArray<N, a launcher's lambda>
     return named.group(1) if named else functor.split("<", 1)[0]
+
+
+def wraps_a_lambda(functor, end):
+    """Whether the functor named up to `end` is a class template whose
+    arguments hold a lagremap function's lambda (not a function template's
+    lambda, whose arguments are followed by its parameters)."""
+    if not functor.startswith("<", end):
+        return False
+    depth = 0
+    for i in range(end, len(functor)):
+        depth += {"<": 1, ">": -1}.get(functor[i], 0)
+        if depth == 0:
+            return not functor.startswith("(", i + 1) and bool(
+                LAMBDA_OF.search(functor[end:i]))
+    return False
 
 
 def parse(lines):

@@ -5,40 +5,31 @@
 
 namespace lagremap {
 
-void sumAudit(const Mesh& mesh, const State& state, const ReportView<SumArray<6>>& totals,
-              const ReportView<SumArray<4>>& boundary) {
+void sumTotals(const Mesh& mesh, const State& state, const CellTotalSumsView& totals) {
   const auto s = state;
   const auto cell_owned = mesh.cell_owned;
-  const auto node_owned = mesh.node_owned;
   Kokkos::parallel_reduce(
       "lagremap::diagnostics::cell_totals", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
-      KOKKOS_LAMBDA(const Index c, SumArray<6>& acc) {
-        if (!cell_owned(c)) return;
-        const double m = s.m_c(c);
-        const Vec3 v = loadVec3(s.v_c, c);
-        const double kinetic = 0.5 * m * dot(v, v);
-        acc.v[0] += m;
-        acc.v[1] += m * v.x;
-        acc.v[2] += m * v.y;
-        acc.v[3] += m * v.z;
-        acc.v[4] += kinetic;
-        acc.v[5] += m * s.E_c(c) - kinetic;
+      KOKKOS_LAMBDA(const Index c, CellTotalSums& sum) {
+        if (cell_owned(c)) addCellTotals(s, c, sum);
       },
-      Kokkos::Sum<SumArray<6>, ReportSpace>(totals));
-  Kokkos::parallel_reduce(
-      "lagremap::diagnostics::boundary_power", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_nodes),
-      KOKKOS_LAMBDA(const Index n, SumArray<4>& acc) {
-        if (!node_owned(n)) return;
-        const Vec3 f = loadVec3(s.f_ext_n, n);
-        acc.v[0] += f.x;
-        acc.v[1] += f.y;
-        acc.v[2] += f.z;
-        acc.v[3] += dot(f, loadVec3(s.v_n, n));
-      },
-      Kokkos::Sum<SumArray<4>, ReportSpace>(boundary));
+      Kokkos::Sum<CellTotalSums, ReportSpace>(totals));
 }
 
-Audit auditOf(SumArray<6> totals, SumArray<4> boundary) {
+namespace {
+void sumBoundaryPower(const Mesh& mesh, const State& state, const BoundaryPowerView& boundary) {
+  const auto s = state;
+  const auto node_owned = mesh.node_owned;
+  Kokkos::parallel_reduce(
+      "lagremap::diagnostics::boundary_power", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_nodes),
+      KOKKOS_LAMBDA(const Index n, BoundaryPowerSums& sum) {
+        if (node_owned(n)) addBoundaryPower(loadVec3(s.f_ext_n, n), loadVec3(s.v_n, n), sum);
+      },
+      Kokkos::Sum<BoundaryPowerSums, ReportSpace>(boundary));
+}
+}  // namespace
+
+Audit auditOf(CellTotalSums totals, BoundaryPowerSums boundary) {
   parallel::sum(totals.v, 6);
   parallel::sum(boundary.v, 4);
   Audit audit;
@@ -52,9 +43,10 @@ Audit auditOf(SumArray<6> totals, SumArray<4> boundary) {
 
 namespace {
 Audit waitedAudit(const Mesh& mesh, const State& state) {
-  const ReportView<SumArray<6>> totals("lagremap::diagnostics::totals");
-  const ReportView<SumArray<4>> boundary("lagremap::diagnostics::boundary_power");
-  sumAudit(mesh, state, totals, boundary);
+  const CellTotalSumsView totals("lagremap::diagnostics::totals");
+  const BoundaryPowerView boundary("lagremap::diagnostics::boundary_power");
+  sumTotals(mesh, state, totals);
+  sumBoundaryPower(mesh, state, boundary);
   fenceFor("lagremap::diagnostics: the audit");
   return auditOf(totals(), boundary());
 }

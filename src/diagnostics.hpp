@@ -5,7 +5,7 @@
 #include "data/mesh.hpp"
 #include "data/state.hpp"
 #include "data/types.hpp"
-#include "kernels/sum_array.hpp"
+#include "kernels/audit_sums.hpp"
 
 namespace lagremap {
 
@@ -24,19 +24,18 @@ struct BoundaryPower {
 // Mass, momentum, kinetic and internal energy of the cells, waited for.
 Totals computeTotals(const Mesh& mesh, const State& state);
 // The boundary nodes' force and power from the last nodal solve (the
-// corrector's, whose velocities moved the mesh), waited for.
+// corrector's, whose velocities moved the mesh), waited for. (A step's
+// comes from that solve itself: nodalSolve's `power`.)
 BoundaryPower computeBoundaryPower(const Mesh& mesh, const State& state);
 
-// Both as a step's audit: this rank's sums left in `totals` and `boundary`
-// without waiting (two reductions: one of all ten sums held a 320-byte stack
-// frame on sm_90); auditOf reads them after a fence (collective: sums over
-// the ranks).
+// A step's audit: this rank's cell totals left in `totals` without waiting
+// (the boundary's sums in `boundary` by the step's last nodal solve);
+// auditOf reads both after a fence (collective: sums over the ranks).
 struct Audit {
   Totals totals;
   BoundaryPower boundary;
 };
-void sumAudit(const Mesh& mesh, const State& state, const ReportView<SumArray<6>>& totals,
-              const ReportView<SumArray<4>>& boundary);
-Audit auditOf(SumArray<6> totals, SumArray<4> boundary);
+void sumTotals(const Mesh& mesh, const State& state, const CellTotalSumsView& totals);
+Audit auditOf(CellTotalSums totals, BoundaryPowerSums boundary);
 
 }  // namespace lagremap

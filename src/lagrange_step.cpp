@@ -69,13 +69,13 @@ StepLimit LagrangeStep::computeGeometry() {
 }
 
 void LagrangeStep::launch(double dt, const StepReport& report) {
-  saveStartOfStep();
-  if (numerics_.order == 1) return stage(dt, true, report.end_of_step);  // forward Euler
+  // (the first stage keeps the state of t^n as it goes: StepStartSave)
+  if (numerics_.order == 1) return stage(dt, true, true, report);  // forward Euler
   // predictor: nodal velocities of t^n carry the state to t^{n+1/2}
-  stage(0.5 * dt, false, report.predictor);
+  stage(0.5 * dt, true, false, report);
   // corrector: forces and velocities of t^{n+1/2} carry t^n to t^{n+1} (an
   // invalid half-step state is found when the host reads the report)
-  stage(dt, true, report.end_of_step);
+  stage(dt, false, true, report);
 }
 
 StepLimit LagrangeStep::advance(double dt, long step) {
@@ -90,24 +90,30 @@ StepLimit LagrangeStep::advance(double dt, long step) {
 
 // One stage of the predictor-corrector (docs/method.md §1.1): its five
 // phases, each timed; this rank's bound on the next dt (the smallest CFL and
-// volume-change candidate at the new positions, docs/method.md §2.7) left in `into`.
-void LagrangeStep::stage(double dt_stage, bool last_stage, const StepLimitView& into) {
+// volume-change candidate at the new positions, docs/method.md §2.7) left in
+// the report's predictor or end_of_step, and the last stage's boundary power
+// in its boundary.
+void LagrangeStep::stage(double dt_stage, bool first_stage, bool last_stage,
+                         const StepReport& report) {
   const StageEnd what = last_stage && remap_follows_ ? StageEnd::ForRemap : StageEnd::Full;
-  computeCorners();
-  solveNodesAndMove(dt_stage);
+  computeCorners(first_stage);
+  solveNodesAndMove(dt_stage, first_stage && !nodes_start_on_target_,
+                    last_stage ? report.boundary : BoundaryPowerView());
   completeGhostNodes(dt_stage);
-  updateCells(dt_stage, what, into);
+  updateCells(dt_stage, what, last_stage ? report.end_of_step : report.predictor);
   completeOuterGhostCells(what);
 }
 
-void LagrangeStep::computeCorners() {
+void LagrangeStep::computeCorners(bool save_cells) {
   auto scope = timers_.scope(Phase::Corners);
-  computeCornerTerms(mesh_, state_, cornerControls(), numerics_.kernels);
+  computeCornerTerms(mesh_, state_, cornerControls(), numerics_.kernels,
+                     {save_cells, false, solid_materials_});
 }
 
-void LagrangeStep::solveNodesAndMove(double dt_stage) {
+void LagrangeStep::solveNodesAndMove(double dt_stage, bool save_nodes,
+                                     const BoundaryPowerView& power) {
   auto scope = timers_.scope(Phase::NodalSolve);
-  nodalSolve(mesh_, state_, cornerControls(), dt_stage);
+  nodalSolve(mesh_, state_, cornerControls(), dt_stage, save_nodes, power);
   std::swap(mesh_.x_n, state_.x_n_next);  // the mesh moves: no copy, the Views trade places
 }
 

@@ -58,7 +58,8 @@ class LagrangeStep {
   // One step t^n -> t^{n+1} from a state whose geometry is current, without
   // waiting: this rank's time-step candidates of the half-step state (second
   // order) and of t^{n+1} land in report.predictor and report.end_of_step
-  // (negative for an invalid cell); the start-of-step copy is kept.
+  // (negative for an invalid cell), the boundary's power in report.boundary;
+  // the start-of-step copy is kept (by the first stage's kernels).
   void launch(double dt, const StepReport& report);
   // The same, waited for: throws RunFailure if the half-step state is
   // invalid; returns the candidate of t^{n+1} over every rank.
@@ -68,7 +69,8 @@ class LagrangeStep {
   StepLimit overAllRanks(StepLimit limit) const;
   // Puts back the state of the start of the last step (the last good state).
   void restoreStartOfStep();
-  // Copies the current state as the start of a step.
+  // Copies the current state as the start of a step (in a kernel of its own;
+  // a step's first stage keeps its own as it goes, StepStartSave).
   void saveStartOfStep();
   // The remap follows every step and computes the geometry and closure again
   // on its target mesh: the last stage of a step then computes only what the
@@ -76,26 +78,30 @@ class LagrangeStep {
   // candidate, only a failure (a negative value) where the state is invalid.
   // Every step then starts on the target, the nodes' present positions,
   // which State::x_n0 keeps from here on (the remap's target too, RemapStep):
-  // saveStartOfStep leaves it.
+  // a step's start leaves it.
   void remapFollowsEveryStep();
   // ALE mode: whether a remap follows the next step (its last stage then
   // computes only what the remap reads, as above); the nodes start each step
-  // where the last one left them, which saveStartOfStep keeps in x_n0.
+  // where the last one left them, which the first stage keeps in x_n0.
   void remapFollowsNextStep(bool follows) { remap_follows_ = follows; }
 
  private:
   // Corner terms, nodal solve, then cell update and geometry at the new
   // positions (StageEnd::ForRemap for the last stage of a step that the remap
-  // follows); this rank's bound on the next dt left in `into`.
-  void stage(double dt_stage, bool last_stage, const StepLimitView& into);
+  // follows); this rank's bound on the next dt left in `report` (the
+  // predictor's or the step's end), the last stage's boundary power too. The
+  // first stage keeps the state it starts from (StepStartSave).
+  void stage(double dt_stage, bool first_stage, bool last_stage, const StepReport& report);
   // The reconstruction's order and the node gather, as the corner terms and
   // the node solve read them.
   CornerControls cornerControls() const { return {numerics_.order, numerics_.gather}; }
   // The stage's phases, each under its timer:
-  // 1. corner forces and matrices of the present state;
-  void computeCorners();
-  // 2. node velocities and the new node positions;
-  void solveNodesAndMove(double dt_stage);
+  // 1. corner forces and matrices of the present state (`save_cells`: and
+  //    its cells' step start kept);
+  void computeCorners(bool save_cells);
+  // 2. node velocities and the new node positions (`save_nodes`: from x_n,
+  //    which x_n0 keeps), the boundary's power summed into `power` if given;
+  void solveNodesAndMove(double dt_stage, bool save_nodes, const BoundaryPowerView& power);
   // 3. ghost nodes from their owners (a decomposed run);
   void completeGhostNodes(double dt_stage);
   // 4. cell velocities, energies, materials and geometry at the new positions,

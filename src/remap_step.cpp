@@ -70,14 +70,15 @@ RemapStep::RemapStep(Mesh& mesh, State& state, const RemapControls& controls, Ph
   if (halo_) remapped_fields_ = remappedCellFields(state);
 }
 
-void RemapStep::launch(const Vec3View& target, const ReportView<RemapBoundaryFlux>& crossed) {
+void RemapStep::launch(const Vec3View& target, const RemapAuditView& audit) {
   {
     auto scope = timers_.scope(Phase::Remap);
     remapDensitiesAndSweptFaces(mesh_, state_, layout_, fields_, mesh_.x_n, target, swept_,
                                 controls_.kernels);
     remapGradients(mesh_, state_, layout_, controls_, fields_);
     if (!controls_.reconstruct) Kokkos::deep_copy(fields_.gradient, 0.0);
-    remapUpdate(mesh_, state_, layout_, controls_, fields_, swept_, crossed, {mesh_.x_n, target});
+    remapUpdate(mesh_, state_, layout_, controls_, fields_, swept_);
+    remapAuditAndMoveNodes(mesh_, state_, layout_, fields_, swept_, {mesh_.x_n, target}, audit);
   }
   if (halo_) {  // ghost cells: their owners' remapped state (docs/method.md §7.4, src/fields.hpp)
     auto scope = timers_.scope(Phase::Halo);
@@ -86,9 +87,9 @@ void RemapStep::launch(const Vec3View& target, const ReportView<RemapBoundaryFlu
 }
 
 RemapBoundaryFlux RemapStep::apply(const Vec3View& target) {
-  launch(target, crossed_);
+  launch(target, audit_);
   fenceFor("lagremap::remap: the boundary crossings");
-  RemapBoundaryFlux crossed = crossed_();
+  RemapBoundaryFlux crossed = remapAuditOf(audit_).crossed;
   parallel::sum(crossed.v, 5);
   return crossed;
 }

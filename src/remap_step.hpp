@@ -32,12 +32,13 @@ class RemapStep {
 
   // Remaps the state of the Lagrangian mesh onto `target` and moves the mesh
   // there, without waiting: what crossed this rank's outer boundary (mass,
-  // momentum, total energy) is left in `crossed`. The target is the initial
-  // mesh (State::x_n0) or another of the same connectivity, a small
-  // displacement from the Lagrangian one (ALE mode's relaxed mesh,
+  // momentum, total energy) and the remapped cells' totals (the audit's) are
+  // left in `audit` (RemapAudit). The target is the initial mesh
+  // (State::x_n0) or another of the same connectivity, a small displacement
+  // from the Lagrangian one (ALE mode's relaxed mesh,
   // src/mesh_relaxation.hpp). The geometry of the state is stale afterwards.
-  void launch(const Vec3View& target, const ReportView<RemapBoundaryFlux>& crossed);
-  void launch(const ReportView<RemapBoundaryFlux>& crossed) { launch(state_.x_n0, crossed); }
+  void launch(const Vec3View& target, const RemapAuditView& audit);
+  void launch(const RemapAuditView& audit) { launch(state_.x_n0, audit); }
   // The same, waited for: returns what crossed every rank's outer boundary.
   RemapBoundaryFlux apply() { return apply(state_.x_n0); }
   RemapBoundaryFlux apply(const Vec3View& target);
@@ -60,7 +61,7 @@ class RemapStep {
   RealView shared_work_;
   RemapFields fields_;
   SweptFaces swept_;
-  ReportView<RemapBoundaryFlux> crossed_{"lagremap::remap::crossed"};  // apply()'s
+  RemapAuditView audit_{"lagremap::remap::audit", kRemapAuditSums};  // apply()'s
   std::vector<FieldRef> remapped_fields_;  // the halo's list, made once (src/fields.hpp)
 };
 

@@ -104,7 +104,6 @@ Simulation::Simulation(const RunOptions& options, const Problem& problem)
   if (limit_.val < 0.0) {
     throw ConfigError("initial state is invalid: " + describeInvalidCell(limit_, 0, "set-up"));
   }
-  lagrange_->saveStartOfStep();
 
   // restart (docs/method.md §7.5): the evolved state and the loop's counters of a
   // checkpoint; the derived fields follow from the same geometry kernel.
@@ -128,7 +127,6 @@ Simulation::Simulation(const RunOptions& options, const Problem& problem)
       throw ConfigError("checkpoint '" + options.restart_file + "' holds an invalid state: " +
                         describeInvalidCell(limit_, loop_.step, "restart"));
     }
-    lagrange_->saveStartOfStep();
   } else {
     if (problem.probe) loop_.probe.emplace_back(0.0, problem.probe.measure(mesh, state_));
     loop_.initial = computeTotals(mesh, state_);
@@ -251,9 +249,9 @@ void Simulation::advance(const TimeStepChoice& choice) {
     // relaxed one (§8): densities, gradients, swept regions, fluxes, energy
     // fix; then the time step of the remapped state
     if (relaxation_) {
-      remap_->launch(relaxation_->target(), report_.crossed);
+      remap_->launch(relaxation_->target(), report_.remap);
     } else {
-      remap_->launch(report_.crossed);
+      remap_->launch(report_.remap);
     }
     lagrange_->computeGeometry(report_.after_remap);
   }
@@ -294,7 +292,9 @@ StepLimit Simulation::checkedStepLimit(long step, bool remapped) {
 
 void Simulation::launchDiagnostics(bool remapped) {
   auto scope = timers_.scope(Phase::Diagnostics);
-  sumAudit(setup_.mesh, state_, report_.totals, report_.boundary);
+  // the audit's sums: the boundary's from the step's last nodal solve, the
+  // cells' totals from the remap's update where it ran
+  if (!remapped) sumTotals(setup_.mesh, state_, report_.totals);
   // (remap mode: the initial mesh again, the quality the set-up measured; ALE
   // mode: the relaxation's guard measured its target)
   if (!remapped) smallestScaledJacobian(setup_.mesh, setup_.mesh.x_n, report_.mesh_quality);
@@ -302,13 +302,11 @@ void Simulation::launchDiagnostics(bool remapped) {
 }
 
 void Simulation::diagnose(double dt, bool remapped) {
-  const Audit audit = auditOf(report_.totals(), report_.boundary());
+  const RemapAudit remap = remapped ? remapAuditOf(report_.remap) : RemapAudit();
+  const Audit audit = auditOf(remapped ? remap.totals : report_.totals(), report_.boundary());
   const BoundaryPower& boundary = audit.boundary;
-  RemapBoundaryFlux crossed;
-  if (remapped) {
-    crossed = report_.crossed();
-    parallel::sum(crossed.v, 5);
-  }
+  RemapBoundaryFlux crossed = remap.crossed;
+  if (remapped) parallel::sum(crossed.v, 5);
   loop_.impulse += dt * boundary.force + Vec3{crossed.v[1], crossed.v[2], crossed.v[3]};
   loop_.work += dt * boundary.power + crossed.v[4];
   loop_.mass_in += crossed.v[0];

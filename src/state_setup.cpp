@@ -184,54 +184,18 @@ std::vector<FieldRef> remappedCellFields(const State& s) {
   return list;
 }
 
-namespace {
-// One value of the start-of-step copy: saved (now -> start) or put back.
-KOKKOS_INLINE_FUNCTION void copyOne(bool save, double& now, double& start) {
-  if (save) {
-    start = now;
-  } else {
-    now = start;
-  }
-}
-}  // namespace
-
 void copyStepStart(const State& state, const Vec3View& x_n, StepStart direction, unsigned solids,
                    bool nodes) {
   const auto s = state;
-  const bool save = direction == StepStart::Save;
   const Index n_cells = Index(s.v_c.extent(0));
   const Index n_nodes = nodes ? Index(x_n.extent(0)) : 0;
-  const int n_materials = s.n_materials;
-  const bool mixed = n_materials > 1;
-  const bool plastic = s.eps_ck.extent(0) > 0;
-  const bool neo_hookean = s.B_ck.extent(0) > 0;
-  const bool masses = save && s.m_ck0.extent(0) > 0;
   Kokkos::parallel_for(
-      save ? "lagremap::lagrange::save_step_start" : "lagremap::lagrange::restore_step_start",
+      direction == StepStart::Save ? "lagremap::lagrange::save_step_start"
+                                   : "lagremap::lagrange::restore_step_start",
       Kokkos::RangePolicy<ExecSpace>(0, n_cells > n_nodes ? n_cells : n_nodes),
       KOKKOS_LAMBDA(const Index i) {
-        if (i < n_nodes) {
-          for (int d = 0; d < 3; ++d) copyOne(save, x_n(i, d), s.x_n0(i, d));
-        }
-        if (i >= n_cells) return;
-        for (int d = 0; d < 3; ++d) copyOne(save, s.v_c(i, d), s.v_c0(i, d));
-        copyOne(save, s.E_c(i), s.E_c0(i));
-        if (mixed && save) s.vol_c0(i) = s.vol_c(i);
-        for (int k = 0; k < n_materials; ++k) {
-          copyOne(save, s.e_ck(i, k), s.e_ck0(i, k));
-          if (mixed) copyOne(save, s.alpha_ck(i, k), s.alpha_ck0(i, k));
-          if (mixed && save) {
-            s.w_ck0(i, k) = s.w_ck(i, k);
-            s.p_ck0(i, k) = s.p_ck(i, k);
-          }
-          if (masses) s.m_ck0(i, k) = s.m_ck(i, k);
-          if (neo_hookean) {
-            for (int j = 0; j < 6; ++j) copyOne(save, s.B_ck(i, k, j), s.B_ck0(i, k, j));
-          }
-          if ((solids >> k & 1u) == 0) continue;
-          for (int j = 0; j < 6; ++j) copyOne(save, s.S_ck(i, k, j), s.S_ck0(i, k, j));
-          if (plastic) copyOne(save, s.eps_ck(i, k), s.eps_ck0(i, k));
-        }
+        if (i < n_nodes) copyNodeStart(s, x_n, i, direction);
+        if (i < n_cells) copyCellStart(s, i, solids, direction);
       });
 }
 

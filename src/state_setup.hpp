@@ -4,6 +4,7 @@
 
 #include "data/state.hpp"
 #include "data/work_arena.hpp"
+#include "kernels/step_start.hpp"
 
 namespace lagremap {
 
@@ -24,18 +25,9 @@ void carveCornerArrays(State& state, Index n_cells, WorkArena& arena);
 void allocateMaterialState(State& state, Index n_cells, int n_materials, bool has_solids,
                            bool has_neo_hookean, bool has_plastic_strain);
 
-// Which way copyStepStart copies: the state a step starts from saved, or
-// put back (the last good state).
-enum class StepStart { Save, Restore };
-
-// The start-of-step copy of the state a step changes, in one kernel over the
-// cells (and the nodes x_n where `nodes`): velocity, total and material
-// energies; with several materials their volume fractions (and, saved, the
-// pressures, volume weights and cell volume the stages start from); the
-// deviators and plastic strains of the materials in `solids` (bit k:
-// material k has strength; a fluid's are zero throughout: nothing writes
-// them); B where the state has it; saved, the material masses where it
-// keeps them (State::m_ck0: RemapStep puts them back).
+// The start-of-step copy of the state a step changes (copyCellStart,
+// kernels/step_start.hpp), in one kernel over the cells (and the nodes x_n
+// where `nodes`).
 void copyStepStart(const State& state, const Vec3View& x_n, StepStart direction, unsigned solids,
                    bool nodes);
 

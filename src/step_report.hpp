@@ -7,6 +7,7 @@
 #pragma once
 
 #include "data/types.hpp"
+#include "kernels/audit_sums.hpp"
 #include "kernels/sum_array.hpp"
 #include "kernels/time_step.hpp"
 
@@ -22,11 +23,11 @@ struct StepReport {
   StepLimitView predictor{"lagremap::report::predictor"};      // the half-step state
   StepLimitView end_of_step{"lagremap::report::end_of_step"};  // the corrector's
   StepLimitView after_remap{"lagremap::report::after_remap"};  // the remapped state
-  // the remap's outer-face crossings (RemapBoundaryFlux: mass, momentum, energy)
-  ReportView<SumArray<5>> crossed{"lagremap::report::crossed"};
+  // the remap's outer-face crossings and the remapped cells' totals (RemapAudit)
+  RemapAuditView remap{"lagremap::report::remap", kRemapAuditSums};
   // the conservation audit's sums: the cells' totals, the boundary's work
-  ReportView<SumArray<6>> totals{"lagremap::report::totals"};
-  ReportView<SumArray<4>> boundary{"lagremap::report::boundary"};
+  CellTotalSumsView totals{"lagremap::report::totals"};
+  BoundaryPowerView boundary{"lagremap::report::boundary"};
   ReportView<double> mesh_quality{"lagremap::report::mesh_quality"};
   ProbeSlots probe;
 };

@@ -5,7 +5,9 @@ a Kokkos view copy, remapGradients' lambda, a stepLimitOverCellGeometries
 instance that spills): our two kernels with their registers, stack and spill
 bytes, the heaviest first; Kokkos' own copy left out; and its --bounds check
 (a kernel past the general bound or its own line fails, a named kernel that
-meets the general bound is told so, a malformed file is refused).
+meets the general bound is told so, a malformed file is refused); a
+`static` launcher's lambda and a functor template wrapping a launcher's
+lambda named after the launcher.
 
   test_gpu_resources.py GPU_RESOURCES_PY REPORT
 """
@@ -34,9 +36,23 @@ def main():
     failures += bounds_failures(script, report)
     failures += internal_linkage_failures(script, os.path.join(os.path.dirname(report),
                                                                "ptxas_report_internal.txt"))
+    failures += wrapped_lambda_failures(script, os.path.join(os.path.dirname(report),
+                                                             "ptxas_report_wrapped.txt"))
     if failures:
         sys.exit("test_gpu_resources: " + "; ".join(failures))
     print("test_gpu_resources: pass")
+
+
+def wrapped_lambda_failures(script, report):
+    """A functor template wrapping a launcher's lambda (SumsInArray<11, the
+    lambda of remapAuditAndMoveNodes>: tests/data/ptxas_report_wrapped.txt)
+    is named after the launcher, as the lambda alone would be."""
+    out = subprocess.run(["/usr/bin/python3", script, report], capture_output=True, text=True,
+                         check=True).stdout
+    rows = out.splitlines()
+    if len(rows) != 3 or rows[1].split()[:3] != ["remapAuditAndMoveNodes", "1", "72"]:
+        return ["wrapped lambda not named after its launcher: " + out]
+    return []
 
 
 def internal_linkage_failures(script, report):

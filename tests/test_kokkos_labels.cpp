@@ -144,7 +144,7 @@ TEST(KokkosEvents, AStepCopiesNoViewAndWaitsOnce) {
     double scale;
     long fused_launches, staged_launches;
   };
-  const Case cases[] = {{"taylor", "remap", 0.25, 15, 19}, {"sedov", "lagrange", 0.34, 10, 12}};
+  const Case cases[] = {{"taylor", "remap", 0.25, 12, 16}, {"sedov", "lagrange", 0.34, 8, 10}};
   std::vector<std::string> forms{"staged"};
   if (kFusedKernelsBuilt) forms.push_back("fused");
   for (const Case& c : cases) {

@@ -11,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -103,6 +104,19 @@ inline std::vector<double> readDoubles(const std::string& path, const char* name
 }
 
 // A fresh scratch directory for one test.
+// Host copies of named Views: a test's snapshot of fields, compared bit for
+// bit (sameBits).
+using HostFields = std::map<std::string, std::vector<double>>;
+template <class View>
+void addHostCopy(HostFields& fields, const char* name, const View& view) {
+  if (view.span() == 0) return;
+  const auto host = Kokkos::create_mirror_view_and_copy(HostSpace(), view);
+  fields[name].assign(host.data(), host.data() + host.span());
+}
+inline bool sameBits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+}
+
 inline std::string scratchDir(const std::string& name) {
   const auto dir = std::filesystem::temp_directory_path() /
                    ("lagremap_test_" + std::to_string(::getpid()) + "_" + name);
