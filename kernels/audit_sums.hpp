@@ -18,17 +18,17 @@ using CellTotalSumsView = ReportView<CellTotalSums>;
 using BoundaryPowerSums = SumArray<4>;
 using BoundaryPowerView = ReportView<BoundaryPowerSums>;
 
-// Cell c's part of the totals.
-KOKKOS_FORCEINLINE_FUNCTION void addCellTotals(const State& s, Index c, CellTotalSums& sum) {
+// Cell c's part of the totals, added to sum[0 .. 5] (CellTotalSums' order).
+KOKKOS_FORCEINLINE_FUNCTION void addCellTotals(const State& s, Index c, double* sum) {
   const double m = s.m_c(c);
   const Vec3 v = loadVec3(s.v_c, c);
   const double kinetic = 0.5 * m * dot(v, v);
-  sum.v[0] += m;
-  sum.v[1] += m * v.x;
-  sum.v[2] += m * v.y;
-  sum.v[3] += m * v.z;
-  sum.v[4] += kinetic;
-  sum.v[5] += m * s.E_c(c) - kinetic;
+  sum[0] += m;
+  sum[1] += m * v.x;
+  sum[2] += m * v.y;
+  sum[3] += m * v.z;
+  sum[4] += kinetic;
+  sum[5] += m * s.E_c(c) - kinetic;
 }
 
 // Quantities the outer boundary exchanged in a remap's sweep (mass, momentum

@@ -107,9 +107,9 @@ struct CellMotionOnLanes {
 }  // namespace detail
 
 // ... and its materials (updateMaterials).
-KOKKOS_INLINE_FUNCTION void updateCell(const CellNodesView& cell_nodes, const Vec3View& x_n,
-                                       const State& s, double dt_stage, Index c,
-                                       StageRelaxation& relaxation) {
+KOKKOS_FORCEINLINE_FUNCTION void updateCell(const CellNodesView& cell_nodes, const Vec3View& x_n,
+                                            const State& s, double dt_stage, Index c,
+                                            StageRelaxation& relaxation) {
   updateMaterials(cell_nodes, x_n, s, dt_stage, c, updateCellMotion(cell_nodes, s, dt_stage, c),
                   relaxation);
 }

@@ -31,10 +31,10 @@ namespace detail {
 // y or z, or two of them) is diagonal, of zeros and ones: P M P keeps the
 // entries of M in the free directions, the same numbers the general product
 // gives (up to the sign of a zero), in a tenth of the operations.
-KOKKOS_INLINE_FUNCTION bool isAxisProjector(const SymMat3& projector) {
+KOKKOS_FORCEINLINE_FUNCTION bool isAxisProjector(const SymMat3& projector) {
   return projector.xy == 0.0 && projector.yz == 0.0 && projector.xz == 0.0;
 }
-KOKKOS_INLINE_FUNCTION SymMat3 constrainedMatrix(const SymMat3& projector, const SymMat3& m) {
+KOKKOS_FORCEINLINE_FUNCTION SymMat3 constrainedMatrix(const SymMat3& projector, const SymMat3& m) {
   const double scale = (m.xx + m.yy + m.zz) * (1.0 / 3.0);
   if (isAxisProjector(projector)) {
     const SymMat3& p = projector;
@@ -62,7 +62,7 @@ KOKKOS_INLINE_FUNCTION SymMat3 constrainedMatrix(const SymMat3& projector, const
 }
 
 // P v, with the axis projector's shortcut of constrainedMatrix (same numbers).
-KOKKOS_INLINE_FUNCTION Vec3 project(const SymMat3& projector, const Vec3& v) {
+KOKKOS_FORCEINLINE_FUNCTION Vec3 project(const SymMat3& projector, const Vec3& v) {
   if (isAxisProjector(projector)) {
     return {projector.xx * v.x, projector.yy * v.y, projector.zz * v.z};
   }
@@ -146,24 +146,27 @@ struct NodeSolver {
         save_start(save_start) {}
 
   // M_p and B_p: the node's corner sums (the CRS gather), or what the corner
-  // kernel scattered (Gather::Atomics).
-  KOKKOS_INLINE_FUNCTION void nodeSums(Index n, SymMat3& impedance, Vec3& rhs) const {
-    if (atomics) {
-      impedance = loadSym(s.M_n, n);
-      rhs = loadVec3(s.B_n, n);
-      return;
-    }
-    impedance = identitySym(0.0);
-    rhs = Vec3{0, 0, 0};
+  // kernel scattered (Gather::Atomics). (Summed in locals, returned by value:
+  // sums kept in a caller's references are stored and reloaded at every
+  // corner, which may alias the corner records.)
+  struct Sums {
+    SymMat3 impedance;
+    Vec3 rhs;
+  };
+  KOKKOS_FORCEINLINE_FUNCTION Sums nodeSums(Index n) const {
+    if (atomics) return {loadSym(s.M_n, n), loadVec3(s.B_n, n)};
+    SymMat3 impedance = identitySym(0.0);
+    Vec3 rhs{0, 0, 0};
     for (Index i = node_corner_offsets(n); i < node_corner_offsets(n + 1); ++i) {
       const Index corner = node_corners(i);
       impedance += loadSym(s.M_cp, corner);
       rhs += loadVec3(s.B_cp, corner);
     }
+    return {impedance, rhs};
   }
 
   // External load of node n's traction faces: sum_bf s_pf sigma^b n_pf.
-  KOKKOS_INLINE_FUNCTION Vec3 tractionLoad(Index n) const {
+  KOKKOS_FORCEINLINE_FUNCTION Vec3 tractionLoad(Index n) const {
     Vec3 load{0, 0, 0};
     for (Index i = node_traction_offsets(n); i < node_traction_offsets(n + 1); ++i) {
       const Index face_id = node_traction_faces(i);
@@ -187,7 +190,7 @@ struct NodeSolver {
 
   // The node's new velocity, position and external force (and its twins'),
   // their force and power added to `power` (force xyz, F . V) where owned.
-  KOKKOS_INLINE_FUNCTION void solve(Index visit, BoundaryPowerSums& power) const {
+  KOKKOS_FORCEINLINE_FUNCTION void solve(Index visit, BoundaryPowerSums& power) const {
     const Index n = node_solve_order(visit);
     if (!atomics) {
       detail::prefetchCornerRecords(s, node_solve_order, node_corner_offsets, node_corners,
@@ -195,9 +198,9 @@ struct NodeSolver {
     }
     if (save_start) copyNodeStart(s, x_n, n, StepStart::Save);
     if (twins && twin_source(n) != n) return;  // its source writes its solution (below)
-    SymMat3 impedance;
-    Vec3 rhs;
-    nodeSums(n, impedance, rhs);
+    const Sums sums = nodeSums(n);
+    const SymMat3& impedance = sums.impedance;
+    const Vec3& rhs = sums.rhs;
     const Vec3 load = tractionLoad(n);
     Vec3 velocity;
     Vec3 reaction{0, 0, 0};  // force of the walls on the node

@@ -1,8 +1,9 @@
 // Remap phase (docs/method.md §A9-A11): the Lagrangian state is carried back onto the
-// initial mesh every step of `--mode remap`, in four parts (three kernels in
-// the staged form: remapDensitiesAndSweptFaces launches the first and third
-// together and books what crossed the outer boundary; remapUpdate moves the
-// nodes onto the target, in a kernel of its own in the fused form):
+// initial mesh every step of `--mode remap`, in four parts and four kernels
+// (remapDensitiesAndSweptFaces launches the first and third together;
+// remapAuditAndMoveNodes puts the nodes on the target, and in the staged
+// form sums what crossed the outer boundary and the totals, which the fused
+// form's update sums):
 //   remapDensities:  per cell, the remapped quantities per unit volume on the
 //                    Lagrangian cell: alpha^k, alpha^k rho^k, alpha^k rho^k e^k,
 //                    rho V, rho |V|^2/2 and alpha^k S^k / alpha^k B^k;
@@ -520,15 +521,30 @@ struct RowOf {
   KOKKOS_FORCEINLINE_FUNCTION double& operator[](int i) const { return view(row, i); }
 };
 
+// What a region swept across the outer boundary carries out of cell c: it
+// takes the cell's own state (zero gradient, its densities `q`), booked as
+// crossed (mass, momentum, total energy).
+KOKKOS_FORCEINLINE_FUNCTION void bookCrossing(const RemapLayout& layout, const MatRealView& q,
+                                              Index c, double dvol, double* crossed) {
+  double mass = 0.0, energy = dvol * q(c, layout.kinetic());
+  for (int m = 0; m < layout.n_materials; ++m) {
+    mass += dvol * q(c, layout.mass(m));
+    energy += dvol * q(c, layout.energy(m));
+  }
+  crossed[0] += mass;
+  for (int d = 0; d < 3; ++d) crossed[1 + d] += dvol * q(c, layout.momentum(d));
+  crossed[4] += energy;
+}
+
 // The integrals of a region swept across the outer boundary: the cell's own
-// state (zero gradient; its crossing is booked in the remap's first kernel,
-// DensitiesAndSweptFaces).
+// state (zero gradient), its crossing booked into `crossed` if given.
 template <class Integral>
 KOKKOS_FORCEINLINE_FUNCTION void fluxOuterRegion(const RemapLayout& layout,
                                                  const RemapFields& fields, Index c, double dvol,
-                                                 Integral& integral) {
+                                                 Integral& integral, double* crossed) {
   const auto& q = fields.density;
   for (int v = 0; v < layout.n_variables; ++v) integral[v] += dvol * q(c, v);
+  if (crossed) bookCrossing(layout, q, c, dvol, crossed);
 }
 
 // Lever limit (docs/method.md §5.2): the slopes are evaluated at the region's
@@ -802,13 +818,15 @@ namespace detail {
 // staged form's rows: RemapFields::integral and source_range, the state's
 // alpha^k, m^k and e^k rows for alpha, mass and internal energy, which no
 // other cell reads in the kernel). The same arithmetic, so the same bits.
+// `audit`: the cell's part of the remap's audit added there (addRemapAudit's,
+// as the fluxes go), or nothing.
 template <class Integral, class Range, class Array>
 KOKKOS_FORCEINLINE_FUNCTION void remapCell(const State& s, const CellFacesView& neighbors,
                                            const RemapLayout& layout, const RemapFields& fields,
                                            const SweptFaces& swept, bool limit, ParcelGuards guards,
                                            double alpha_floor, bool kinetic_energy_fix, Index c,
                                            Integral& integral, Range& range, Array& alpha,
-                                           Array& mass, Array& internal) {
+                                           Array& mass, Array& internal, double* audit) {
   // integrals over the Lagrangian cell, then the fluxes of its regions
   const double volume_lag = s.vol_c(c);
   for (int v = 0; v < layout.n_variables; ++v) integral[v] = fields.density(c, v) * volume_lag;
@@ -822,7 +840,7 @@ KOKKOS_FORCEINLINE_FUNCTION void remapCell(const State& s, const CellFacesView& 
       const double dvol = swept.dvol_r(r);
       volume += dvol;
       if (nb < 0) {  // nothing crosses a wall (dV = 0 there)
-        if (dvol != 0.0) fluxOuterRegion(layout, fields, c, dvol, integral);
+        if (dvol != 0.0) fluxOuterRegion(layout, fields, c, dvol, integral, audit);
         continue;
       }
       // A region of no volume carries nothing once its lever is limited
@@ -840,32 +858,19 @@ KOKKOS_FORCEINLINE_FUNCTION void remapCell(const State& s, const CellFacesView& 
   cleanUpMaterials(layout, s.materials, integral, volume, range, alpha_floor, alpha, mass,
                    internal);
   storeRemappedCell(s, layout, c, integral, alpha, mass, internal, kinetic_energy_fix);
+  if (audit) addCellTotals(s, c, audit + 5);
 }
 
 }  // namespace detail
 
-// What a region swept across the outer boundary carries out of cell c: it
-// takes the cell's own state (zero gradient, its densities `q`), booked as
-// crossed (mass, momentum, total energy).
 namespace detail {
-KOKKOS_FORCEINLINE_FUNCTION void bookCrossing(const RemapLayout& layout, const MatRealView& q,
-                                              Index c, double dvol, RemapBoundaryFlux& crossed) {
-  double mass = 0.0, energy = dvol * q(c, layout.kinetic());
-  for (int m = 0; m < layout.n_materials; ++m) {
-    mass += dvol * q(c, layout.mass(m));
-    energy += dvol * q(c, layout.energy(m));
-  }
-  crossed.v[0] += mass;
-  for (int d = 0; d < 3; ++d) crossed.v[1 + d] += dvol * q(c, layout.momentum(d));
-  crossed.v[4] += energy;
-}
-
 // The crossings of cell c's outer regions (a cell's outer faces are its
-// own: its sweep wrote them).
+// own: its sweep wrote them), added to crossed[0 .. 4] (RemapBoundaryFlux's
+// order).
 KOKKOS_FORCEINLINE_FUNCTION void bookCellCrossings(const RemapLayout& layout, const MatRealView& q,
                                                    const CellFacesView& neighbors,
                                                    const RealView& dvol_r, Index c,
-                                                   RemapBoundaryFlux& crossed) {
+                                                   double* crossed) {
   for (int f = 0; f < 6; ++f) {
     if (neighbors(c, f) >= 0) continue;
     for (int side = 0; side < 2; ++side) {
@@ -876,11 +881,23 @@ KOKKOS_FORCEINLINE_FUNCTION void bookCellCrossings(const RemapLayout& layout, co
 }
 }  // namespace detail
 
+// The owned cell c's part of a remap's audit (RemapAuditView): what its outer
+// regions carried across, and its remapped totals.
+KOKKOS_FORCEINLINE_FUNCTION void addRemapAudit(const State& s, const RemapLayout& layout,
+                                               const MatRealView& q, const CellFacesView& neighbors,
+                                               const RealView& dvol_r, Index c, double* sums) {
+  detail::bookCellCrossings(layout, q, neighbors, dvol_r, c, sums);
+  addCellTotals(s, c, sums + 5);
+}
+
 // Sum of the upwind fluxes of the cell's 12 face-side regions, the new state on
 // the initial mesh, clean-up and kinetic-energy fix (docs/method.md §A9-A11).
+// The fused form also sums the audit (addRemapAudit) into `audit_into`,
+// without waiting; the staged form's update holds no reduction
+// (remapAuditAndMoveNodes sums it).
 static inline void remapUpdate(const Mesh& mesh, const State& state, const RemapLayout& layout,
                                const RemapControls& controls, const RemapFields& fields,
-                               const SweptFaces& swept) {
+                               const SweptFaces& swept, const RemapAuditView& audit_into) {
   const auto neighbors = mesh.cell_neighbors;
   const auto s = state;
   const bool limit = controls.limit;
@@ -891,14 +908,17 @@ static inline void remapUpdate(const Mesh& mesh, const State& state, const Remap
   const auto policy = Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells);
   if constexpr (kFusedKernelsBuilt) {
     if (controls.kernels == KernelForm::Fused) {  // the thread's own work arrays
-      Kokkos::parallel_for(
-          "lagremap::remap::fluxes_and_update", policy, KOKKOS_LAMBDA(const Index c) {
-            double integral[kMaxRemapVariables];
-            detail::SourceRangeOf<detail::SourceBounds> range;
-            double alpha[kMaxMaterials], mass[kMaxMaterials], internal[kMaxMaterials];
-            detail::remapCell(s, neighbors, layout, fields, swept, limit, guards, alpha_floor,
-                              kinetic_energy_fix, c, integral, range, alpha, mass, internal);
-          });
+      const auto owned = mesh.cell_owned;
+      const auto cell = KOKKOS_LAMBDA(const Index c, double* sums) {
+        double integral[kMaxRemapVariables];
+        detail::SourceRangeOf<detail::SourceBounds> range;
+        double alpha[kMaxMaterials], mass[kMaxMaterials], internal[kMaxMaterials];
+        detail::remapCell(s, neighbors, layout, fields, swept, limit, guards, alpha_floor,
+                          kinetic_energy_fix, c, integral, range, alpha, mass, internal,
+                          owned(c) ? sums : nullptr);
+      };
+      Kokkos::parallel_reduce("lagremap::remap::fluxes_and_update", policy,
+                              SumsInArray<kRemapAuditSums, decltype(cell)>(cell), audit_into);
       return;
     }
   }
@@ -909,7 +929,8 @@ static inline void remapUpdate(const Mesh& mesh, const State& state, const Remap
         RowOf integral_row{integral, c}, alpha{s.alpha_ck, c}, mass{s.m_ck, c}, internal{s.e_ck, c};
         detail::SourceRangeOf<detail::SourceBoundsRow> range{{source_range, c}};
         detail::remapCell(s, neighbors, layout, fields, swept, limit, guards, alpha_floor,
-                          kinetic_energy_fix, c, integral_row, range, alpha, mass, internal);
+                          kinetic_energy_fix, c, integral_row, range, alpha, mass, internal,
+                          nullptr);
       });
 }
 
@@ -924,15 +945,26 @@ struct NodesOntoTarget {
   }
 };
 
-// The remap's last kernel, after remapUpdate (a thread per cell or node,
-// the larger count): the crossings of each owned cell's outer regions and its
-// remapped totals summed into `into` (RemapAuditView, without waiting), and
-// the nodes moved onto the target. (The sums in update's kernel held 144
-// registers on sm_90 where it holds 124.)
+// The remap's last kernel, after remapUpdate: the nodes moved onto the
+// target; in the staged form (a thread per cell or node, the larger count)
+// with the audit of each owned cell (addRemapAudit) summed into `into`
+// without waiting (in the update's kernel the sums held 144 registers on
+// sm_90 where it holds 124). The fused form's update summed it (remapUpdate);
+// its nodes move in a kernel of their own (within the update's range they
+// cost the CPU 54 instructions a cell-step more).
 static inline void remapAuditAndMoveNodes(const Mesh& mesh, const State& state,
                                           const RemapLayout& layout, const RemapFields& fields,
                                           const SweptFaces& swept, const NodesOntoTarget& nodes,
-                                          const RemapAuditView& into) {
+                                          const RemapAuditView& into,
+                                          KernelForm form = defaultKernelForm()) {
+  if constexpr (kFusedKernelsBuilt) {
+    if (form == KernelForm::Fused) {
+      Kokkos::parallel_for(
+          "lagremap::remap::move_nodes", Kokkos::RangePolicy<ExecSpace>(0, nodes.count()),
+          KOKKOS_LAMBDA(const Index n) { nodes.move(n); });
+      return;
+    }
+  }
   const auto owned = mesh.cell_owned;
   const auto neighbors = mesh.cell_neighbors;
   const auto q = fields.density;
@@ -943,12 +975,7 @@ static inline void remapAuditAndMoveNodes(const Mesh& mesh, const State& state,
   const auto terms = KOKKOS_LAMBDA(const Index i, double* sums) {
     if (i < nodes.count()) nodes.move(i);
     if (i >= n_cells || !owned(i)) return;  // (a ghost's sums are its owner's)
-    RemapBoundaryFlux crossed;
-    detail::bookCellCrossings(layout, q, neighbors, dvol_r, i, crossed);
-    CellTotalSums totals;
-    addCellTotals(s, i, totals);
-    for (int j = 0; j < 5; ++j) sums[j] += crossed.v[j];
-    for (int j = 0; j < 6; ++j) sums[5 + j] += totals.v[j];
+    addRemapAudit(s, layout, q, neighbors, dvol_r, i, sums);
   };
   Kokkos::parallel_reduce("lagremap::remap::audit_and_move_nodes",
                           Kokkos::RangePolicy<ExecSpace>(0, count),

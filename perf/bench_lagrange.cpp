@@ -339,11 +339,12 @@ void BM_SweptFaces(benchmark::State& state) {
 void BM_RemapFluxes(benchmark::State& state) {
   Bench& b = *g_bench;
   RemapInputs& r = *g_remap;
+  const RemapAuditView audit("bench::remap_audit", kRemapAuditSums);
   for (auto _ : state) {
     r.prepare(b);  // untimed
     Kokkos::fence();
     Kokkos::Timer timer;
-    remapUpdate(b.mesh(), b.state(), r.layout, r.controls, r.fields, r.swept);
+    remapUpdate(b.mesh(), b.state(), r.layout, r.controls, r.fields, r.swept, audit);
     Kokkos::fence();
     state.SetIterationTime(timer.seconds());
   }

@@ -11,7 +11,7 @@ void sumTotals(const Mesh& mesh, const State& state, const CellTotalSumsView& to
   Kokkos::parallel_reduce(
       "lagremap::diagnostics::cell_totals", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
       KOKKOS_LAMBDA(const Index c, CellTotalSums& sum) {
-        if (cell_owned(c)) addCellTotals(s, c, sum);
+        if (cell_owned(c)) addCellTotals(s, c, sum.v);
       },
       Kokkos::Sum<CellTotalSums, ReportSpace>(totals));
 }

@@ -77,8 +77,9 @@ void RemapStep::launch(const Vec3View& target, const RemapAuditView& audit) {
                                 controls_.kernels);
     remapGradients(mesh_, state_, layout_, controls_, fields_);
     if (!controls_.reconstruct) Kokkos::deep_copy(fields_.gradient, 0.0);
-    remapUpdate(mesh_, state_, layout_, controls_, fields_, swept_);
-    remapAuditAndMoveNodes(mesh_, state_, layout_, fields_, swept_, {mesh_.x_n, target}, audit);
+    remapUpdate(mesh_, state_, layout_, controls_, fields_, swept_, audit);
+    remapAuditAndMoveNodes(mesh_, state_, layout_, fields_, swept_, {mesh_.x_n, target}, audit,
+                           controls_.kernels);
   }
   if (halo_) {  // ghost cells: their owners' remapped state (docs/method.md §7.4, src/fields.hpp)
     auto scope = timers_.scope(Phase::Halo);
