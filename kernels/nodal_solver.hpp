@@ -240,6 +240,8 @@ struct NodeSolver {
     }
   }
 
+  // Node n's velocity, external force and new position; its force and power
+  // added to `power` where this rank owns it.
   KOKKOS_FORCEINLINE_FUNCTION void store(Index n, const Vec3& velocity, const Vec3& force,
                                          BoundaryPowerSums& power) const {
     storeVec3(s.v_n, n, velocity);
