@@ -18,7 +18,9 @@ trap 'rm -f "$log"' EXIT
 start=$(date +%s)
 bash "$here/scripts/setup.sh" --backend cuda
 if ! bash "$here/scripts/build.sh" --backend cuda > "$log" 2>&1; then
-  grep -v '^\[' "$log" | tail -n 60 >&2
+  # (the build's own lines, not its progress; its last lines where it has
+  # none: a failure must never end the check without a word)
+  { grep -v '^\[' "$log" || tail -n 20 "$log"; } | tail -n 60 >&2
   echo "CUDA compile check FAILED: the build (above)" >&2
   exit 1
 fi
