@@ -861,9 +861,6 @@ KOKKOS_FORCEINLINE_FUNCTION void remapCell(const State& s, const CellFacesView& 
   if (audit) addCellTotals(s, c, audit + 5);
 }
 
-}  // namespace detail
-
-namespace detail {
 // The crossings of cell c's outer regions (a cell's outer faces are its
 // own: its sweep wrote them), added to crossed[0 .. 4] (RemapBoundaryFlux's
 // order).
@@ -892,8 +889,9 @@ KOKKOS_FORCEINLINE_FUNCTION void addRemapAudit(const State& s, const RemapLayout
 
 // Sum of the upwind fluxes of the cell's 12 face-side regions, the new state on
 // the initial mesh, clean-up and kinetic-energy fix (docs/method.md §A9-A11).
-// The fused form also sums the audit (addRemapAudit) into `audit_into`,
-// without waiting; the staged form's update holds no reduction
+// The fused form also sums the remap's audit into `audit_into`, without
+// waiting (each crossing as its flux loop meets it, the totals of the stored
+// cell); the staged form's update holds no reduction
 // (remapAuditAndMoveNodes sums it).
 static inline void remapUpdate(const Mesh& mesh, const State& state, const RemapLayout& layout,
                                const RemapControls& controls, const RemapFields& fields,
