@@ -58,12 +58,17 @@ KOKKOS_FORCEINLINE_FUNCTION double updateCellMotion(const CellNodesView& cell_no
 }
 
 namespace detail {
+// What the staged cell motion does with the cell's new e = E - |V|^2/2.
+enum class MotionEnergies {
+  OneMaterial,  // the one material's e^k = e (what updateMaterials sets)
+  Materials,  // the materials' energies, a mixed cell's budget (updateMaterials<kMaterialEnergies>)
+  NextKernel,  // nothing: the materials' kernel sets them (updateMaterialParts)
+};
+
 // The same in the staged form: corner p's terms by lane p (cell_teams.hpp),
-// then their sums in corner order, the same bits. kEnergies: then the
-// materials' energies (updateMaterials<kMaterialEnergies>, a mixed cell's
-// budget) by the cell's lane 0; else the one material's e^0 = e_new (what
-// that would set).
-template <bool kEnergies>
+// then their sums in corner order, the same bits; then the energies the
+// cell's lane 0 sets (kEnergies).
+template <MotionEnergies kEnergies>
 struct CellMotionOnLanes {
   enum : int { kForce = 0, kPower = 24, kDvdt = 32, kColumns = 40 };
   using Teams = Kokkos::TeamPolicy<ExecSpace>;
@@ -93,12 +98,12 @@ struct CellMotionOnLanes {
               dvdt += row(kDvdt + p);
             }
             const double e_new = moveCell(s, dt_stage, c, force, power, dvdt);
-            if constexpr (kEnergies) {
+            if constexpr (kEnergies == MotionEnergies::OneMaterial) {
+              s.e_ck(c, 0) = e_new;
+            } else if constexpr (kEnergies == MotionEnergies::Materials) {
               StageRelaxation relaxation;
               updateMaterials<kMaterialEnergies>(cell_nodes, x_n, s, dt_stage, c, e_new,
                                                  relaxation);
-            } else {
-              s.e_ck(c, 0) = e_new;  // (updateMaterials' pure cell)
             }
           });
         });
@@ -114,64 +119,98 @@ KOKKOS_FORCEINLINE_FUNCTION void updateCell(const CellNodesView& cell_nodes, con
                   relaxation);
 }
 
-// The staged form's cell motion, with the materials' energies when there are
-// several (detail::CellMotionOnLanes).
-template <bool kEnergies>
-static void updateCellMotion(const char* label, const Mesh& mesh, const State& state,
-                             double dt_stage) {
+// The staged form's cell motion (detail::CellMotionOnLanes).
+template <detail::MotionEnergies kEnergies>
+static void updateCellMotion(const Mesh& mesh, const State& state, double dt_stage) {
   using Motion = detail::CellMotionOnLanes<kEnergies>;
   const Motion motion{mesh.cell_nodes, mesh.x_n, state, dt_stage, mesh.n_cells};
+  const char* label = kEnergies == detail::MotionEnergies::Materials
+                          ? "lagremap::cell_update::forces_and_energies"
+                          : "lagremap::cell_update::corner_forces";
   Kokkos::parallel_for(
       label, cell_teams::overCells<typename Motion::Teams>(mesh.n_cells, Motion::kColumns), motion);
 }
 
-// The staged form's second kernel of the cell update: every cell's deviators
-// (kParts: hypo-elastic S, Neo-Hookean B; updateMaterials<kParts> from the
-// cell's stored E and V, the same bits), then, `share`, a mixed cell's
-// volume sharing at its new shape (shareCellVolume: after the deviators,
-// which read the stage's volume fractions before it).
+namespace detail {
+// updateMaterials<kParts> a part at a time: the energies, then the deviators.
 template <int kParts>
-static void updateDeviators(const Mesh& mesh, const State& state, double dt_stage, bool share) {
+KOKKOS_FORCEINLINE_FUNCTION void updateMaterialsPartByPart(const CellNodesView& cell_nodes,
+                                                           const Vec3View& x_n, const State& s,
+                                                           double dt_stage, Index c, double e_new) {
+  StageRelaxation relaxation;
+  constexpr int kDeviators = kParts & ~kMaterialEnergies;
+  if constexpr (kDeviators != kParts) {
+    updateMaterials<kMaterialEnergies>(cell_nodes, x_n, s, dt_stage, c, e_new, relaxation);
+  }
+  if constexpr (kDeviators != 0) {
+    updateMaterials<kDeviators>(cell_nodes, x_n, s, dt_stage, c, e_new, relaxation);
+  }
+}
+}  // namespace detail
+
+// The staged form's second kernel of the cell update, a cell to a thread:
+// the parts kParts of its materials' update (updateMaterials<part> from the
+// cell's stored E and V, e = E - |V|^2/2: the same bits), the energies
+// first and the deviators in a call of their own (one call with both held
+// 156 registers on sm_90: the gradient and volume ratios recomputed cost
+// less than the registers), then, `share`, a mixed cell's volume sharing at
+// its new shape (shareCellVolume: after the materials, which read the
+// stage's volume fractions before it). At most 128 threads a block and 4
+// blocks an SM: 128 registers a thread on sm_90.
+template <int kParts>
+static void updateMaterialParts(const Mesh& mesh, const State& state, double dt_stage, bool share) {
   const auto cell_nodes = mesh.cell_nodes;
   const auto x_n = mesh.x_n;
   const bool z_prisms = mesh.z_prisms;
   const auto s = state;
+  using Cells = Kokkos::RangePolicy<ExecSpace, Kokkos::LaunchBounds<128, 4>>;
   Kokkos::parallel_for(
-      "lagremap::cell_update::deviators", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
-      KOKKOS_LAMBDA(const Index c) {
+      "lagremap::cell_update::materials", Cells(0, mesh.n_cells), KOKKOS_LAMBDA(const Index c) {
         const Vec3 velocity = loadVec3(s.v_c, c);
-        StageRelaxation relaxation;
-        updateMaterials<kParts>(cell_nodes, x_n, s, dt_stage, c,
-                                s.E_c(c) - 0.5 * dot(velocity, velocity), relaxation);
+        detail::updateMaterialsPartByPart<kParts>(cell_nodes, x_n, s, dt_stage, c,
+                                                  s.E_c(c) - 0.5 * dot(velocity, velocity));
         if (share) shareCellVolume(s, NodesOfCell{cell_nodes, x_n, c}, z_prisms);
       });
 }
 
-// The staged form's cell update: the cells' motion (with the materials'
-// energies) and their deviators as two kernels (the deviators' e_new = E -
-// |V|^2/2 from the stored E and V: the same bits); `share`: the second also
-// shares the mixed cells' volumes at their new shapes (a kernel of its own
-// where no material has a deviator, shareVolumeChanges).
+// The staged form's cell update: the cells' motion on lanes (detail::
+// CellMotionOnLanes, 40 registers on sm_90), then their materials' parts
+// (updateMaterialParts: a mixed run's energies, the deviators; `share`: the
+// mixed cells' volumes shared at their new shapes) a cell to a thread, the
+// energies' budget then at full warp width. A mixed run with Neo-Hookean
+// deviators takes the energies in the motion's lane 0 (128 registers): with
+// the deviators and the sharing they spilled 26 bytes under 128 registers.
 static inline void updateCellsStaged(const Mesh& mesh, const State& state, double dt_stage,
                                      bool share) {
+  using detail::MotionEnergies;
   const bool mixed = state.n_materials > 1;
-  if (mixed) {
-    updateCellMotion<true>("lagremap::cell_update::forces_and_energies", mesh, state, dt_stage);
+  const int deviators = (state.has_solids ? int(kHypoElasticParts) : 0) |
+                        (state.has_neo_hookean ? int(kNeoHookeanParts) : 0);
+  const bool energies_in_motion = mixed && (deviators & kNeoHookeanParts) != 0;
+  if (!mixed) {
+    updateCellMotion<MotionEnergies::OneMaterial>(mesh, state, dt_stage);
+  } else if (energies_in_motion) {
+    updateCellMotion<MotionEnergies::Materials>(mesh, state, dt_stage);
   } else {
-    updateCellMotion<false>("lagremap::cell_update::corner_forces", mesh, state, dt_stage);
+    updateCellMotion<MotionEnergies::NextKernel>(mesh, state, dt_stage);
   }
   share = share && mixed;
-  const int parts = (state.has_solids ? int(kHypoElasticParts) : 0) |
-                    (state.has_neo_hookean ? int(kNeoHookeanParts) : 0);
-  if (parts == kHypoElasticParts) {
-    updateDeviators<kHypoElasticParts>(mesh, state, dt_stage, share);
-  } else if (parts == kNeoHookeanParts) {
-    updateDeviators<kNeoHookeanParts>(mesh, state, dt_stage, share);
-  } else if (parts != 0) {  // (both in one kernel held 161 registers on sm_90)
-    updateDeviators<kHypoElasticParts>(mesh, state, dt_stage, false);
-    updateDeviators<kNeoHookeanParts>(mesh, state, dt_stage, share);
-  } else if (share) {
-    shareVolumeChanges(mesh, state);
+  const int parts = deviators | (mixed && !energies_in_motion ? int(kMaterialEnergies) : 0);
+  switch (parts) {
+    case 0:
+      return;
+    case kMaterialEnergies:
+      return updateMaterialParts<kMaterialEnergies>(mesh, state, dt_stage, share);
+    case kHypoElasticParts:
+      return updateMaterialParts<kHypoElasticParts>(mesh, state, dt_stage, share);
+    case kMaterialEnergies | kHypoElasticParts:
+      return updateMaterialParts<kMaterialEnergies | kHypoElasticParts>(mesh, state, dt_stage,
+                                                                        share);
+    case kNeoHookeanParts:
+      return updateMaterialParts<kNeoHookeanParts>(mesh, state, dt_stage, share);
+    default:  // both kinds of deviator, apart (in one kernel they held 161 registers)
+      updateMaterialParts<kHypoElasticParts>(mesh, state, dt_stage, false);
+      return updateMaterialParts<kNeoHookeanParts>(mesh, state, dt_stage, share);
   }
 }
 

@@ -522,19 +522,6 @@ KOKKOS_INLINE_FUNCTION void shareCellVolume(const State& s, const NodesOfCell& n
   shareVolumeChange(s, nodes.c, stagedShape(nodes, z_prisms, base).volume);
 }
 
-// ... every cell's, a kernel of its own.
-static inline void shareVolumeChanges(const Mesh& mesh, const State& state) {
-  const auto cell_nodes = mesh.cell_nodes;
-  const auto x_n = mesh.x_n;
-  const bool z_prisms = mesh.z_prisms;
-  const auto s = state;
-  Kokkos::parallel_for(
-      "lagremap::cell_update::share_volume", Kokkos::RangePolicy<ExecSpace>(0, mesh.n_cells),
-      KOKKOS_LAMBDA(const Index c) {
-        shareCellVolume(s, NodesOfCell{cell_nodes, x_n, c}, z_prisms);
-      });
-}
-
 // The smallest time-step candidate (or a negative value and the failure
 // code for an invalid cell), left in `into` without waiting.
 static inline void computeGeometry(const Mesh& mesh, const State& state,

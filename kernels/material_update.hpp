@@ -47,9 +47,9 @@ LAGREMAP_OUT_OF_LINE KOKKOS_INLINE_FUNCTION void hardeningReturn(const State& s,
 // `relaxation`: a mixed cell's relaxation volumes, for the geometry of the same
 // sweep (StageRelaxation).
 // What updateMaterials does: the fused form all of it in one kernel, the
-// staged form each part in a kernel of its own (the energies first: the
-// deviators' updates read nothing they write, and they read the start-of-
-// stage deviators the energies' stress power takes).
+// staged form a part a call (kernels/cell_update.hpp; the energies first:
+// the deviators' updates read nothing they write, and they write the
+// start-of-stage deviators the energies' stress power takes).
 enum MaterialParts : int {
   kMaterialEnergies = 1,  // e^k (and a mixed cell's budget)
   kHypoElasticParts = 2,  // hypo-elastic deviators

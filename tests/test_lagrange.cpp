@@ -382,8 +382,9 @@ TEST(Lagrange, ThreadCountFlagTakesBothKokkosSpellings) {
 // The two kernel forms (numerics.kernels, kernels/geometry.hpp) give the same
 // bits: a 3D hexahedral run (sedov), a one-solid run (taylor), a remap run on z prisms with mixed
 // cells (taylor), a Neo-Hookean remap run on hexahedra (beam) and one through a moving traction
-// face (pile), an ALE run (taylor), to their final fields. On a GPU build only the staged form
-// exists and asking for the fused one is an error.
+// face (pile), mixed cells of two gases (air_helium) and of a hardening solid (rod), an ALE run
+// (taylor), to their final fields. On a GPU build only the staged form exists and asking for the
+// fused one is an error.
 TEST(KernelForms, FusedAndStagedRunsAreBitIdentical) {
   struct Case {
     const char* problem;
@@ -397,6 +398,8 @@ TEST(KernelForms, FusedAndStagedRunsAreBitIdentical) {
       {"taylor", "remap", 0.25, {"t_end=2e-4"}},
       {"beam", "remap", 0.3, {"t_end=1e-6"}},
       {"pile", "remap", 0.5, {"t_end=1e-5"}},   // a traction face: mass and energy cross it
+      {"air_helium", "remap", 0.5, {}},         // the staged energies kernel shares the volumes
+      {"rod", "remap", 0.25, {"t_end=2e-6"}},   // energies and hardening deviators, one kernel
       {"taylor", "ale", 0.25, {"t_end=2e-4"}},  // the relaxed mesh's remap, bounded parcels
   };
   for (const Case& c : cases) {
