@@ -7,6 +7,8 @@
 // Its kernel launchers are `static` (internal linkage: docs/method.md §7.2).
 #pragma once
 
+#include <type_traits>
+
 #include "../data/mesh.hpp"
 #include "../data/state.hpp"
 #include "cell_teams.hpp"
@@ -109,6 +111,11 @@ struct CellMotionOnLanes {
         });
   }
 };
+
+// The motion with the materials' energies (a mixed Neo-Hookean run), under
+// a name of its own: the resource gate holds the motion alone to its 40
+// registers (perf/gpu_resource_bounds.txt).
+struct CellMotionAndEnergiesOnLanes : CellMotionOnLanes<MotionEnergies::Materials> {};
 }  // namespace detail
 
 // ... and its materials (updateMaterials).
@@ -122,7 +129,9 @@ KOKKOS_FORCEINLINE_FUNCTION void updateCell(const CellNodesView& cell_nodes, con
 // The staged form's cell motion (detail::CellMotionOnLanes).
 template <detail::MotionEnergies kEnergies>
 static void updateCellMotion(const Mesh& mesh, const State& state, double dt_stage) {
-  using Motion = detail::CellMotionOnLanes<kEnergies>;
+  using Motion = std::conditional_t<kEnergies == detail::MotionEnergies::Materials,
+                                    detail::CellMotionAndEnergiesOnLanes,
+                                    detail::CellMotionOnLanes<kEnergies>>;
   const Motion motion{mesh.cell_nodes, mesh.x_n, state, dt_stage, mesh.n_cells};
   const char* label = kEnergies == detail::MotionEnergies::Materials
                           ? "lagremap::cell_update::forces_and_energies"

@@ -82,8 +82,9 @@ def internal_linkage_failures(script, report):
 
 def bounds_failures(script, report):
     """--bounds: over the general bound fails and names the kernel; a kernel's
-    own line lets it pass at its numbers; a named kernel that meets the general
-    bound is told to leave the file."""
+    own line lets it pass at its numbers; a named kernel with a looser line
+    that meets the general bound is told to leave the file; a tighter line
+    holds a kernel's occupancy."""
     failures = []
     with tempfile.TemporaryDirectory() as work:
         def run(text):
@@ -104,9 +105,15 @@ def bounds_failures(script, report):
         tighter = run("* 128 256 0\nstepLimitOverCellGeometries 255 752 2000\nremapGradients 160 0 0\n")
         if tighter.returncode != 1 or "spill 2028 > 2000" not in tighter.stdout:
             failures.append("a kernel past its own line passed: " + tighter.stdout)
-        met = run("* 256 1024 4096\nremapGradients 200 0 0\n")
+        met = run("* 256 1024 4096\nremapGradients 300 0 0\n")
         if "remapGradients now meets the general bound" not in met.stdout:
             failures.append("a kernel within the general bound not reported: " + met.stdout)
+        held = run("* 256 1024 4096\nremapGradients 160 0 0\n")  # tighter: an occupancy
+        if held.returncode != 0 or "now meets" in held.stdout:
+            failures.append("a kernel held at its occupancy told to leave: " + held.stdout)
+        lost = run("* 256 1024 4096\nremapGradients 128 0 0\n")
+        if lost.returncode != 1 or "remapGradients: registers 160 > 128" not in lost.stdout:
+            failures.append("a kernel past the occupancy its line holds passed: " + lost.stdout)
         bad = run("remapGradients 160 0\n")
         if bad.returncode == 0 or "expected 'KERNEL REGISTERS STACK SPILL'" not in bad.stderr:
             failures.append("a malformed bounds file accepted: " + bad.stderr)
