@@ -57,7 +57,10 @@ using Kokkos::Experimental::sqrt;
 #endif
 
 // A loop kept rolled where unrolling would hold all its iterations' state at
-// once (the staged form's corner loop, kernels/geometry.hpp): device passes.
+// once (the staged form's corner loop, kernels/geometry.hpp; the stage end's
+// loops over a cell's materials, whose count only the run knows: unrolled,
+// they spilled the materials' kernel past 128 registers on sm_90): device
+// passes.
 #if defined(__CUDA_ARCH__) || defined(__HIP_DEVICE_COMPILE__)
 #define LAGREMAP_NO_UNROLL _Pragma("unroll 1")
 #else

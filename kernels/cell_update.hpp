@@ -7,8 +7,6 @@
 // Its kernel launchers are `static` (internal linkage: docs/method.md §7.2).
 #pragma once
 
-#include <type_traits>
-
 #include "../data/mesh.hpp"
 #include "../data/state.hpp"
 #include "cell_teams.hpp"
@@ -60,23 +58,16 @@ KOKKOS_FORCEINLINE_FUNCTION double updateCellMotion(const CellNodesView& cell_no
 }
 
 namespace detail {
-// What the staged cell motion does with the cell's new e = E - |V|^2/2.
-enum class MotionEnergies {
-  OneMaterial,  // the one material's e^k = e (what updateMaterials sets)
-  Materials,  // the materials' energies, a mixed cell's budget (updateMaterials<kMaterialEnergies>)
-  NextKernel,  // nothing: the materials' kernel sets them (updateMaterialParts)
-};
-
 // The same in the staged form: corner p's terms by lane p (cell_teams.hpp),
-// then their sums in corner order, the same bits; then the energies the
-// cell's lane 0 sets (kEnergies).
-template <MotionEnergies kEnergies>
+// then their sums in corner order, the same bits. kOneMaterial: the cell's
+// one material takes e^k = e_new (what updateMaterials sets); with several,
+// the materials' energies are the next kernel's (updateMaterialParts).
+template <bool kOneMaterial>
 struct CellMotionOnLanes {
   enum : int { kForce = 0, kPower = 24, kDvdt = 32, kColumns = 40 };
   using Teams = Kokkos::TeamPolicy<ExecSpace>;
 
   CellNodesView cell_nodes;
-  Vec3View x_n;
   State s;
   double dt_stage;
   Index n_cells;
@@ -100,22 +91,11 @@ struct CellMotionOnLanes {
               dvdt += row(kDvdt + p);
             }
             const double e_new = moveCell(s, dt_stage, c, force, power, dvdt);
-            if constexpr (kEnergies == MotionEnergies::OneMaterial) {
-              s.e_ck(c, 0) = e_new;
-            } else if constexpr (kEnergies == MotionEnergies::Materials) {
-              StageRelaxation relaxation;
-              updateMaterials<kMaterialEnergies>(cell_nodes, x_n, s, dt_stage, c, e_new,
-                                                 relaxation);
-            }
+            if constexpr (kOneMaterial) s.e_ck(c, 0) = e_new;
           });
         });
   }
 };
-
-// The motion with the materials' energies (a mixed Neo-Hookean run), under
-// a name of its own: the resource gate holds the motion alone to its 40
-// registers (perf/gpu_resource_bounds.txt).
-struct CellMotionAndEnergiesOnLanes : CellMotionOnLanes<MotionEnergies::Materials> {};
 }  // namespace detail
 
 // ... and its materials (updateMaterials).
@@ -127,17 +107,13 @@ KOKKOS_FORCEINLINE_FUNCTION void updateCell(const CellNodesView& cell_nodes, con
 }
 
 // The staged form's cell motion (detail::CellMotionOnLanes).
-template <detail::MotionEnergies kEnergies>
+template <bool kOneMaterial>
 static void updateCellMotion(const Mesh& mesh, const State& state, double dt_stage) {
-  using Motion = std::conditional_t<kEnergies == detail::MotionEnergies::Materials,
-                                    detail::CellMotionAndEnergiesOnLanes,
-                                    detail::CellMotionOnLanes<kEnergies>>;
-  const Motion motion{mesh.cell_nodes, mesh.x_n, state, dt_stage, mesh.n_cells};
-  const char* label = kEnergies == detail::MotionEnergies::Materials
-                          ? "lagremap::cell_update::forces_and_energies"
-                          : "lagremap::cell_update::corner_forces";
+  using Motion = detail::CellMotionOnLanes<kOneMaterial>;
+  const Motion motion{mesh.cell_nodes, state, dt_stage, mesh.n_cells};
   Kokkos::parallel_for(
-      label, cell_teams::overCells<typename Motion::Teams>(mesh.n_cells, Motion::kColumns), motion);
+      "lagremap::cell_update::corner_forces",
+      cell_teams::overCells<typename Motion::Teams>(mesh.n_cells, Motion::kColumns), motion);
 }
 
 namespace detail {
@@ -160,12 +136,12 @@ KOKKOS_FORCEINLINE_FUNCTION void updateMaterialsPartByPart(const CellNodesView& 
 // The staged form's second kernel of the cell update, a cell to a thread:
 // the parts kParts of its materials' update (updateMaterials<part> from the
 // cell's stored E and V, e = E - |V|^2/2: the same bits), the energies
-// first and the deviators in a call of their own (one call with both held
-// 156 registers on sm_90: the gradient and volume ratios recomputed cost
-// less than the registers), then, `share`, a mixed cell's volume sharing at
-// its new shape (shareCellVolume: after the materials, which read the
-// stage's volume fractions before it). At most 128 threads a block and 4
-// blocks an SM: 128 registers a thread on sm_90.
+// first and the deviators in a call of their own (one call with both
+// spilled 140 to 500 bytes under 128 registers on sm_90: the gradient and
+// volume ratios recomputed cost less), then, `share`, a mixed cell's
+// volume sharing at its new shape (shareCellVolume: after the materials,
+// which read the stage's volume fractions before it). At most 128 threads
+// a block and 4 blocks an SM: 128 registers a thread on sm_90.
 template <int kParts>
 static void updateMaterialParts(const Mesh& mesh, const State& state, double dt_stage, bool share) {
   const auto cell_nodes = mesh.cell_nodes;
@@ -185,41 +161,40 @@ static void updateMaterialParts(const Mesh& mesh, const State& state, double dt_
 // The staged form's cell update: the cells' motion on lanes (detail::
 // CellMotionOnLanes, 40 registers on sm_90), then their materials' parts
 // (updateMaterialParts: a mixed run's energies, the deviators; `share`: the
-// mixed cells' volumes shared at their new shapes) a cell to a thread, the
-// energies' budget then at full warp width. A mixed run with Neo-Hookean
-// deviators takes the energies in the motion's lane 0 (128 registers): with
-// the deviators and the sharing they spilled 26 bytes under 128 registers.
+// mixed cells' volumes shared at their new shapes) a cell to a thread.
 static inline void updateCellsStaged(const Mesh& mesh, const State& state, double dt_stage,
                                      bool share) {
-  using detail::MotionEnergies;
   const bool mixed = state.n_materials > 1;
-  const int deviators = (state.has_solids ? int(kHypoElasticParts) : 0) |
-                        (state.has_neo_hookean ? int(kNeoHookeanParts) : 0);
-  const bool energies_in_motion = mixed && (deviators & kNeoHookeanParts) != 0;
-  if (!mixed) {
-    updateCellMotion<MotionEnergies::OneMaterial>(mesh, state, dt_stage);
-  } else if (energies_in_motion) {
-    updateCellMotion<MotionEnergies::Materials>(mesh, state, dt_stage);
+  if (mixed) {
+    updateCellMotion<false>(mesh, state, dt_stage);
   } else {
-    updateCellMotion<MotionEnergies::NextKernel>(mesh, state, dt_stage);
+    updateCellMotion<true>(mesh, state, dt_stage);
   }
   share = share && mixed;
-  const int parts = deviators | (mixed && !energies_in_motion ? int(kMaterialEnergies) : 0);
+  const int parts = (mixed ? int(kMaterialEnergies) : 0) |
+                    (state.has_solids ? int(kHypoElasticParts) : 0) |
+                    (state.has_neo_hookean ? int(kNeoHookeanParts) : 0);
+  constexpr int kEnergies = kMaterialEnergies, kHypo = kHypoElasticParts, kNeo = kNeoHookeanParts;
   switch (parts) {
     case 0:
       return;
-    case kMaterialEnergies:
-      return updateMaterialParts<kMaterialEnergies>(mesh, state, dt_stage, share);
-    case kHypoElasticParts:
-      return updateMaterialParts<kHypoElasticParts>(mesh, state, dt_stage, share);
-    case kMaterialEnergies | kHypoElasticParts:
-      return updateMaterialParts<kMaterialEnergies | kHypoElasticParts>(mesh, state, dt_stage,
-                                                                        share);
-    case kNeoHookeanParts:
-      return updateMaterialParts<kNeoHookeanParts>(mesh, state, dt_stage, share);
+    case kEnergies:
+      return updateMaterialParts<kEnergies>(mesh, state, dt_stage, share);
+    case kHypo:
+      return updateMaterialParts<kHypo>(mesh, state, dt_stage, share);
+    case kEnergies | kHypo:
+      return updateMaterialParts<kEnergies | kHypo>(mesh, state, dt_stage, share);
+    case kNeo:
+      return updateMaterialParts<kNeo>(mesh, state, dt_stage, share);
+    case kEnergies | kNeo:
+      return updateMaterialParts<kEnergies | kNeo>(mesh, state, dt_stage, share);
     default:  // both kinds of deviator, apart (in one kernel they held 161 registers)
-      updateMaterialParts<kHypoElasticParts>(mesh, state, dt_stage, false);
-      return updateMaterialParts<kNeoHookeanParts>(mesh, state, dt_stage, share);
+      if (mixed) {
+        updateMaterialParts<kEnergies | kHypo>(mesh, state, dt_stage, false);
+      } else {
+        updateMaterialParts<kHypo>(mesh, state, dt_stage, false);
+      }
+      return updateMaterialParts<kNeo>(mesh, state, dt_stage, share);
   }
 }
 

@@ -89,6 +89,7 @@ KOKKOS_INLINE_FUNCTION double traceFraction(const State& s, int k, bool holds_el
 // current or the step-start ones).
 template <class Alpha>
 KOKKOS_INLINE_FUNCTION bool cellHoldsElasticBody(const State& s, const Alpha& alpha, Index c) {
+  LAGREMAP_NO_UNROLL
   for (int m = 0; m < s.n_materials; ++m) {
     if (alpha(c, m) > 0.0 && s.materials(m).strength == StrengthKind::NeoHookean) return true;
   }
@@ -139,6 +140,7 @@ KOKKOS_INLINE_FUNCTION void relaxationVolumes(const State& s, Index c,
   double weight_sum = 0.0;
   for (int m = 0; m < kMaxMaterials; ++m) relax[m] = 0.0;
   const bool holds_elastic = cellHoldsElasticBody(s, s.alpha_ck0, c);
+  LAGREMAP_NO_UNROLL
   for (int m = 0; m < n_materials; ++m) {
     relaxes[m] = s.alpha_ck0(c, m) > 0.0 &&
                  s.alpha_ck0(c, m) >= traceFraction(s, m, holds_elastic) && s.w_ck0(c, m) > 0.0;
@@ -147,9 +149,11 @@ KOKKOS_INLINE_FUNCTION void relaxationVolumes(const State& s, Index c,
     sigma[m] = interfaceNormalStress(s, s.alpha_ck0, s.p_ck0, s.S_ck0, c, m);
   }
   double scale = 1.0;
+  LAGREMAP_NO_UNROLL
   for (int m = 0; m < n_materials; ++m) {
     if (!relaxes[m]) continue;
     double pull = 0.0;
+    LAGREMAP_NO_UNROLL
     for (int n = 0; n < n_materials; ++n) {
       if (n != m && relaxes[n]) pull += s.w_ck0(c, n) * (sigma[n] - sigma[m]);
     }
@@ -158,6 +162,7 @@ KOKKOS_INLINE_FUNCTION void relaxationVolumes(const State& s, Index c,
     const double allowed = kMaxRelaxation * s.alpha_ck0(c, m) * s.vol_c0(c);
     if (change * scale > allowed) scale = allowed / change;
   }
+  LAGREMAP_NO_UNROLL
   for (int m = 0; m < n_materials; ++m) relax[m] *= scale;
 }
 
@@ -181,6 +186,7 @@ KOKKOS_FORCEINLINE_FUNCTION void shareVolumeChange(const State& s, Index c, doub
   if (s.closure == MixtureClosure::EqualStrain) return;  // alpha^k unchanged
   double weight_sum = 0.0;
   int present = 0;
+  LAGREMAP_NO_UNROLL
   for (int k = 0; k < s.n_materials; ++k) {
     if (!(s.alpha_ck0(c, k) > 0.0)) continue;  // an absent material's w is stale
     ++present;
@@ -192,6 +198,7 @@ KOKKOS_FORCEINLINE_FUNCTION void shareVolumeChange(const State& s, Index c, doub
   if (!(known && known->known)) relaxationVolumes(s, c, computed);
   const double* relax = known && known->known ? known->volume : computed;
   double alpha_sum = 0.0;
+  LAGREMAP_NO_UNROLL
   for (int k = 0; k < s.n_materials; ++k) {
     const double alpha_start = s.alpha_ck0(c, k);
     if (!(alpha_start > 0.0)) continue;
@@ -204,6 +211,7 @@ KOKKOS_FORCEINLINE_FUNCTION void shareVolumeChange(const State& s, Index c, doub
     s.alpha_ck(c, k) = alpha;
     alpha_sum += alpha;
   }
+  LAGREMAP_NO_UNROLL
   for (int k = 0; k < s.n_materials; ++k) s.alpha_ck(c, k) /= alpha_sum;
 }
 
@@ -211,6 +219,7 @@ KOKKOS_INLINE_FUNCTION CellThermo cellThermo(const State& s, Index c, double vol
                                              double e_cell) {
   CellThermo mix;
   int present = 0;
+  LAGREMAP_NO_UNROLL
   for (int k = 0; k < s.n_materials; ++k) present += s.alpha_ck(c, k) > 0.0;
   // a trace below its threshold (none in a pure cell)
   const bool holds_elastic = present > 1 && cellHoldsElasticBody(s, s.alpha_ck, c);
@@ -218,6 +227,7 @@ KOKKOS_INLINE_FUNCTION CellThermo cellThermo(const State& s, Index c, double vol
     return present > 1 ? traceFraction(s, k, holds_elastic) : 0.0;
   };
   double active_alpha = 0.0, active_mass = 0.0;
+  LAGREMAP_NO_UNROLL
   for (int k = 0; k < s.n_materials; ++k) {
     const double alpha = s.alpha_ck(c, k);
     if (alpha > 0.0 && alpha >= threshold(k)) {
@@ -228,6 +238,7 @@ KOKKOS_INLINE_FUNCTION CellThermo cellThermo(const State& s, Index c, double vol
   const double inv_mass = 1.0 / active_mass;
   mix.valid = present > 0;
   SymMat3 deviator = identitySym(0.0);
+  LAGREMAP_NO_UNROLL
   for (int k = 0; k < s.n_materials; ++k) {
     const double alpha = s.alpha_ck(c, k);
     if (!(alpha > 0.0 && alpha >= threshold(k))) continue;
@@ -272,6 +283,7 @@ KOKKOS_INLINE_FUNCTION CellThermo cellThermo(const State& s, Index c, double vol
     const double scale = active_alpha != 1.0 ? 1.0 / active_alpha : 1.0;
     mix.pressure *= scale;
     deviator = scale * deviator;
+    LAGREMAP_NO_UNROLL
     for (int k = 0; k < s.n_materials; ++k) {
       const double alpha = s.alpha_ck(c, k);
       if (alpha > 0.0 && alpha < threshold(k)) {
@@ -516,6 +528,7 @@ static void stepLimitOverCellNodes(const char* label, const Mesh& mesh, const Ce
 KOKKOS_INLINE_FUNCTION void shareCellVolume(const State& s, const NodesOfCell& nodes,
                                             bool z_prisms) {
   int present = 0;
+  LAGREMAP_NO_UNROLL
   for (int k = 0; k < s.n_materials; ++k) present += s.alpha_ck0(nodes.c, k) > 0.0;
   if (present < 2) return;
   hex::PrismBase base{};  // (read on prisms only)

@@ -66,6 +66,7 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
   constexpr bool kNeo = (kParts & kNeoHookeanParts) != 0;
   constexpr bool kStaged = kParts != kAllMaterialParts;
   int present = 0, last = 0;
+  LAGREMAP_NO_UNROLL
   for (int k = 0; k < s.n_materials; ++k) {
     if (s.alpha_ck(c, k) > 0.0) {
       ++present;
@@ -92,6 +93,7 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
   bool deformation_known = false;
   Mat3 deformation = zeroMat();
   const bool holds_elastic = mixed && cellHoldsElasticBody(s, s.alpha_ck, c);
+  LAGREMAP_NO_UNROLL
   for (int k = 0; k < s.n_materials; ++k) {
     const double alpha = s.alpha_ck(c, k);
     if (!(alpha > 0.0)) continue;

@@ -56,6 +56,7 @@ KOKKOS_FORCEINLINE_FUNCTION void ownVolumeRatios(const State& s, Index c, double
                                                  double own_ratio[], StageRelaxation& relaxation) {
   const bool equal_strain = s.closure == MixtureClosure::EqualStrain;
   double weight_sum = 0.0;  // compressibility weights of the step start
+  LAGREMAP_NO_UNROLL
   for (int k = 0; k < s.n_materials && !equal_strain; ++k) {
     if (s.alpha_ck(c, k) > 0.0) weight_sum += s.w_ck0(c, k);
   }
@@ -66,6 +67,7 @@ KOKKOS_FORCEINLINE_FUNCTION void ownVolumeRatios(const State& s, Index c, double
     relaxationVolumes(s, c, relax);
     relaxation.known = true;
   }
+  LAGREMAP_NO_UNROLL
   for (int k = 0; k < s.n_materials; ++k) {
     if (!(s.alpha_ck(c, k) > 0.0)) continue;
     // (equal strain: alpha^k of the volume change, the cell's rate)
@@ -130,6 +132,7 @@ KOKKOS_FORCEINLINE_FUNCTION void mixedCellBudget(const State& s, Index c, double
   const Vec3 v0 = loadVec3(s.v_c0, c);
   budget.dissipation = s.m_c(c) * (e_new - (s.E_c0(c) - 0.5 * dot(v0, v0)));
   const bool holds_elastic = cellHoldsElasticBody(s, s.alpha_ck, c);
+  LAGREMAP_NO_UNROLL
   for (int k = 0; k < s.n_materials; ++k) {
     const double alpha = s.alpha_ck(c, k);
     if (!(alpha > 0.0)) continue;
