@@ -259,22 +259,12 @@ static inline void updateCellsAndGeometry(const Mesh& mesh, const State& state, 
   // or the closure on the shared volumes (a kernel of its own: with the
   // sharing it held 154 registers on sm_90)
   updateCellsStaged(mesh, state, dt_stage, true);
-  const bool z_prisms = mesh.z_prisms;
   if (what == StageEnd::ForRemap) {
-    return stepLimitOverCellNodes(
-        "lagremap::cell_update::shape", mesh,
-        KOKKOS_LAMBDA(const NodesOfCell& nodes, StepLimit& best) {
-          hex::PrismBase base{};  // (read on prisms only)
-          cellShapeForRemap(stagedShape(nodes, z_prisms, base), s, nodes.c, best, nullptr, false);
-        },
-        into);
+    return stepLimitOverCellNodes<StageEnd::ForRemap>("lagremap::cell_update::shape", mesh, state,
+                                                      controls, into);
   }
-  stepLimitOverCellNodes(
-      "lagremap::cell_update::geometry", mesh,
-      KOKKOS_LAMBDA(const NodesOfCell& nodes, StepLimit& best) {
-        cellThermoOnNodes(nodes, z_prisms, s, controls, best, false);
-      },
-      into);
+  stepLimitOverCellNodes<StageEnd::Full>("lagremap::cell_update::geometry", mesh, state, controls,
+                                         into);
 }
 
 }  // namespace lagremap

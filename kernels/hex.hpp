@@ -186,17 +186,39 @@ KOKKOS_FORCEINLINE_FUNCTION void sweepFace(const NodeAt& node, const Point<Real>
 //   volume = sum(q_k . T_k) / 6,
 //   centroid = sum((q_k . T_k)(q_k + q_k+1 + fp)) / (4 sum(q_k . T_k))
 // (the constant factors folded out of the 24-triangle loop).
+// Triangle k's terms, its weight q_k . T_k and weighted point, and the face's
+// squared area, are also taken one at a time (the staged form's lanes).
+template <class Real>
+KOKKOS_FORCEINLINE_FUNCTION Real triangleWeight(const FaceSweep<Real>& face, int k) {
+  return dot(face.q[k], face.doubled[k]);
+}
+template <class Real>
+KOKKOS_FORCEINLINE_FUNCTION Point<Real> weightedTrianglePoint(const FaceSweep<Real>& face, int k,
+                                                              const Real& weight) {
+  return weight * (face.q[k] + face.q[(k + 1) & 3] + face.face_point);
+}
+template <class Real>
+KOKKOS_FORCEINLINE_FUNCTION Real faceArea2(const FaceSweep<Real>& face) {
+  return 0.25 * dot(face.doubled_face, face.doubled_face);
+}
 template <class Real>
 KOKKOS_FORCEINLINE_FUNCTION void addFaceToShape(const FaceSweep<Real>& face, Real& six_volume,
                                                 Point<Real>& weighted_sum, Real& max_area2) {
   LAGREMAP_UNROLL
   for (int k = 0; k < 4; ++k) {
-    const Real weight = dot(face.q[k], face.doubled[k]);
+    const Real weight = triangleWeight(face, k);
     six_volume += weight;
-    weighted_sum = weighted_sum + weight * (face.q[k] + face.q[(k + 1) & 3] + face.face_point);
+    weighted_sum = weighted_sum + weightedTrianglePoint(face, k, weight);
   }
-  const Real area2 = 0.25 * dot(face.doubled_face, face.doubled_face);
+  const Real area2 = faceArea2(face);
   max_area2 = area2 > max_area2 ? area2 : max_area2;
+}
+// The shape from those sums (six_volume and weighted_sum relative to the
+// cell's node 0, `origin`).
+KOKKOS_INLINE_FUNCTION CellShape shapeOfSums(const Point<double>& origin, double six_volume,
+                                             const Point<double>& weighted_sum, double max_area2) {
+  const Point<double> centroid = origin + (0.25 / six_volume) * weighted_sum;
+  return {six_volume / 6.0, Vec3{centroid.x, centroid.y, centroid.z}, math::sqrt(max_area2)};
 }
 // The corner-face vector of the face's node k:
 //   s_pf n_pf = 1/3 (t_k-1 + t_k + 1/4 face) = 1/6 (T_k-1 + T_k + 1/4 sum T).
@@ -324,8 +346,7 @@ KOKKOS_INLINE_FUNCTION CellShape sweptShape(const NodeAt& node) {
     detail::sweepFace(point, origin, f, face);
     detail::addFaceToShape(face, six_volume, weighted_sum, max_area2);
   }
-  const Point<double> centroid = origin + (0.25 / six_volume) * weighted_sum;
-  return {six_volume / 6.0, Vec3{centroid.x, centroid.y, centroid.z}, math::sqrt(max_area2)};
+  return detail::shapeOfSums(origin, six_volume, weighted_sum, max_area2);
 }
 
 // Node p (VTK order: x bit set for 1, 2, 5, 6, y bit for 2, 3, 6, 7, z bit
