@@ -57,7 +57,8 @@ using Kokkos::Experimental::sqrt;
 #endif
 
 // A loop kept rolled where unrolling would hold all its iterations' state at
-// once (the staged form's corner loop, kernels/geometry.hpp; the stage end's
+// once (the staged form's loops over a corner's faces, kernels/hex.hpp, and
+// over a cell's faces' terms, kernels/geometry_staged.hpp; the stage end's
 // loops over a cell's materials, whose count only the run knows: unrolled,
 // they spilled the materials' kernel past 128 registers on sm_90): device
 // passes.

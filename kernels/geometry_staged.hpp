@@ -112,18 +112,12 @@ struct StagedGeometry {
       hex::prismBase(nodes, base);
       return hex::prismCorner(nodes, base, p);
     }
-    Point<double> vector{0.0, 0.0, 0.0};
-    double moment[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0}, area = 0.0;
-    LAGREMAP_NO_UNROLL
-    for (int i = 0; i < 3; ++i) {
-      const int f = hex::faceOfNode(p, i);
-      int k = 0;  // p's place on face f
-      for (int j = 1; j < 4; ++j) k = hex::faceNode(f, j) == p ? j : k;
-      const Vec3 w = row.vec3(geometry_lanes::kCornerFace + 3 * (4 * f + k));
-      hex::detail::addCornerFace(Point<double>{w.x, w.y, w.z}, vector, moment, area);
-    }
-    return {Vec3{vector.x, vector.y, vector.z},
-            SymMat3{moment[0], moment[1], moment[2], moment[3], moment[4], moment[5]}, area};
+    return hex::cornerOfFaces(
+        [&](int f, int k) {
+          const Vec3 w = row.vec3(geometry_lanes::kCornerFace + 3 * (4 * f + k));
+          return Point<double>{w.x, w.y, w.z};
+        },
+        p);
   }
 
   // Lane p: corner p's A_cp and M_cp.
@@ -137,9 +131,12 @@ struct StagedGeometry {
   }
 
   // Cell c: its shape, then (one lane) its closure or the remap's checks,
-  // then its corners.
-  KOKKOS_INLINE_FUNCTION void ofCell(const GeometryMember& team, Index c, const ScratchRow& row,
-                                     StepLimit& best) const {
+  // then its corners. (Out of line on the host, where the staged form only
+  // runs to be compared: inlined, it took the unit's inlining budget, and
+  // GCC left hot functions of the fused kernels out of line.)
+  LAGREMAP_OUT_OF_LINE KOKKOS_INLINE_FUNCTION void ofCell(const GeometryMember& team, Index c,
+                                                          const ScratchRow& row,
+                                                          StepLimit& best) const {
     const NodesOfCell nodes{cell_nodes, x_n, c};
     const hex::CellShape cell_shape = shape(team, nodes, row);
     Kokkos::single(Kokkos::PerThread(team), [&] {

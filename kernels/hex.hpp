@@ -327,12 +327,10 @@ KOKKOS_INLINE_FUNCTION void cellGeometry(const Vec3 x[8], CellGeometry& g) {
       sums, [](double v) { return v; }, g);
 }
 
-// The staged form (docs/method.md §7.6): the shape alone, then one corner at
-// a time, each from its 3 faces, in the sweep's order and arithmetic, so the
-// same bits as cellGeometry, with a small part of its live state (the 8
-// corners' sums are never held at once) for 4 times its face work. `node(n)`
-// gives the position of the cell's node n (a GPU thread reads it from the
-// mesh, through the cache, rather than hold all 8).
+// The shape alone, in the sweep's order and arithmetic, so the same bits as
+// cellGeometry (the staged form, docs/method.md §7.6). `node(n)` gives the
+// position of the cell's node n (a GPU thread reads it from the mesh,
+// through the cache, rather than hold all 8).
 template <class NodeAt>
 KOKKOS_INLINE_FUNCTION CellShape sweptShape(const NodeAt& node) {
   using detail::Point;
@@ -358,45 +356,20 @@ KOKKOS_INLINE_FUNCTION int faceOfNode(int p, int i) {
   return 2 * i + side;
 }
 
-namespace detail {
-// The corner-face vector of node k of face f (cornerFaceVector of sweepFace),
-// with k known only at run time: the 4 doubled triangles in turn, the two of
-// node k kept by selection, so that nothing is held in an indexed array
-// (which a GPU keeps in local memory).
-template <class NodeAt>
-KOKKOS_FORCEINLINE_FUNCTION Point<double> cornerFaceVectorAt(const NodeAt& point,
-                                                             const Point<double>& origin, int f,
-                                                             int k) {
-  Point<double> q[4];
-  LAGREMAP_UNROLL
-  for (int j = 0; j < 4; ++j) q[j] = point(faceNode(f, j)) - origin;
-  const Point<double> face_point = 0.25 * (q[0] + q[1] + q[2] + q[3]);
-  const int before = (k + 3) & 3;
-  Point<double> sum{}, own{}, previous{};
-  LAGREMAP_UNROLL
-  for (int j = 0; j < 4; ++j) {
-    const Point<double> doubled = cross(q[(j + 1) & 3] - q[j], face_point - q[j]);
-    sum = j == 0 ? doubled : sum + doubled;
-    own = j == k ? doubled : own;
-    previous = j == before ? doubled : previous;
-  }
-  return (1.0 / 6.0) * (previous + own + 0.25 * sum);
-}
-}  // namespace detail
-
-template <class NodeAt>
-KOKKOS_INLINE_FUNCTION CornerSums cornerSums(const NodeAt& node, int p) {
-  using detail::Point;
-  const Point<double> origin = detail::nodePoint(node, 0);
-  const auto point = [&](int n) { return detail::nodePoint(node, n); };
-  Point<double> vector{0.0, 0.0, 0.0};
+// Corner p's sums from its 3 corner-face vectors, added in the sweep's
+// (face) order, so the same bits as cellGeometry's: `face_vector(f, k)` gives
+// the corner-face vector of node k of face f (detail::cornerFaceVector; the
+// staged form's face lanes leave them in scratch memory).
+template <class FaceVector>
+KOKKOS_INLINE_FUNCTION CornerSums cornerOfFaces(const FaceVector& face_vector, int p) {
+  detail::Point<double> vector{0.0, 0.0, 0.0};
   double moment[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0}, area = 0.0;
   LAGREMAP_NO_UNROLL
   for (int i = 0; i < 3; ++i) {
     const int f = faceOfNode(p, i);
     int k = 0;  // p's place on face f
     for (int j = 1; j < 4; ++j) k = faceNode(f, j) == p ? j : k;
-    detail::addCornerFace(detail::cornerFaceVectorAt(point, origin, f, k), vector, moment, area);
+    detail::addCornerFace(face_vector(f, k), vector, moment, area);
   }
   return {Vec3{vector.x, vector.y, vector.z},
           SymMat3{moment[0], moment[1], moment[2], moment[3], moment[4], moment[5]}, area};

@@ -14,10 +14,11 @@ namespace lagremap {
 //   its stencil's offsets), kCellLanes cells in the lanes of a vector on CPU
 //   builds, and a stage's cell update and geometry are one kernel (the
 //   cell's records are in cache once).
-// - Staged: the shape, then one corner at a time from its 3 faces, offsets
-//   reloaded where they are used (more arithmetic, a small part of the live
-//   state); the cell update, the volume sharing and the geometry separate
-//   kernels. What a GPU thread runs in registers.
+// - Staged: a cell to a thread of a team, its faces, corners, gradient rows
+//   or vertices in the lanes of a vector, passing values through the team's
+//   scratch memory (cell_teams.hpp); offsets reloaded where they are used (a
+//   small part of the live state); the cell update, the volume sharing and
+//   the geometry separate kernels. What a GPU thread runs in registers.
 // `numerics.kernels` chooses at run time; the default is the backend's. The
 // fused form is built for host execution spaces only (on a GPU its kernels
 // spill), so a CPU build runs and tests both.

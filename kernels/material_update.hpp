@@ -6,8 +6,8 @@
 #pragma once
 
 #include "../data/state.hpp"
+#include "cell_thermo.hpp"
 #include "constitutive.hpp"
-#include "geometry.hpp"
 #include "mixed_cell_budget.hpp"
 #include "velocity_gradients.hpp"
 

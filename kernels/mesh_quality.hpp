@@ -15,7 +15,7 @@
 
 #include "../data/mesh.hpp"
 #include "../data/types.hpp"
-#include "geometry.hpp"
+#include "cell_thermo.hpp"
 
 namespace lagremap {
 

@@ -6,7 +6,7 @@
 
 #include "../data/material_params.hpp"
 #include "../data/state.hpp"
-#include "geometry.hpp"
+#include "cell_thermo.hpp"
 
 namespace lagremap {
 

@@ -6,7 +6,7 @@
 #pragma once
 
 #include "../data/state.hpp"
-#include "geometry.hpp"
+#include "cell_thermo.hpp"
 #include "hex.hpp"
 
 namespace lagremap {

@@ -86,8 +86,8 @@ Config declareConfig(const Problem& problem, const std::string& mode) {
                    "node sums: node->corner CRS (deterministic) or atomic scatter");
   config.addChoice("numerics.kernels", "auto", {"auto", "fused", "staged"},
                    "per-cell kernel form, the same results: fused (one sweep per cell, CPU "
-                   "vector lanes), staged (a corner at a time, separate kernels: GPU "
-                   "registers), auto (the backend's: fused on CPUs, staged on GPUs)");
+                   "vector lanes), staged (a cell's faces and corners in vector lanes, separate "
+                   "kernels: GPU registers), auto (the backend's: fused on CPUs, staged on GPUs)");
   return config;
 }
 

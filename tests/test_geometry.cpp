@@ -191,9 +191,10 @@ TEST(Geometry, CellsInLanesGiveTheSameBitsAsOneByOne) {
 // closed forms of hex::prismGeometry give the general sweep's volume,
 // centroid, face area, corner vectors and impedance sums to round-off, on
 // distorted (non-convex too) quads far from the origin, thin and thick.
-// The staged form (kernels/geometry.hpp, KernelForm): the shape alone, then
-// each corner from its 3 faces, with the node positions read one at a time;
-// the same bits as the fused sweep, a degenerate face included.
+// The staged form's pieces (kernels/geometry_staged.hpp, KernelForm): the
+// shape alone with the node positions read one at a time, and each corner
+// from the corner-face vectors of its 3 faces; the same bits as the fused
+// sweep, a degenerate face included.
 TEST(Geometry, StagedFormGivesTheSweepsBitsCornerByCorner) {
   std::mt19937 rng(11);
   for (int trial = 0; trial < 40; ++trial) {
@@ -211,8 +212,14 @@ TEST(Geometry, StagedFormGivesTheSweepsBitsCornerByCorner) {
     EXPECT_EQ(shape.centroid.y, fused.shape.centroid.y);
     EXPECT_EQ(shape.centroid.z, fused.shape.centroid.z);
     EXPECT_EQ(shape.max_face_area, fused.shape.max_face_area);
+    const auto face_vector = [&](int f, int k) {
+      hex::detail::FaceSweep<double> face;
+      hex::detail::sweepFace([&](int n) { return hex::detail::nodePoint(node, n); },
+                             hex::detail::nodePoint(node, 0), f, face);
+      return hex::detail::cornerFaceVector(face, k);
+    };
     for (int p = 0; p < 8; ++p) {
-      const hex::CornerSums corner = hex::cornerSums(node, p);
+      const hex::CornerSums corner = hex::cornerOfFaces(face_vector, p);
       EXPECT_EQ(corner.vector.x, fused.corner[p].x) << "trial " << trial << " corner " << p;
       EXPECT_EQ(corner.vector.y, fused.corner[p].y);
       EXPECT_EQ(corner.vector.z, fused.corner[p].z);
