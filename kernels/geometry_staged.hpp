@@ -139,6 +139,8 @@ struct StagedGeometry {
                                                           StepLimit& best) const {
     const NodesOfCell nodes{cell_nodes, x_n, c};
     const hex::CellShape cell_shape = shape(team, nodes, row);
+    // (one lane proposes: a team thread's lanes share one reduction value on
+    // a GPU, Kokkos' CUDA team reduce)
     Kokkos::single(Kokkos::PerThread(team), [&] {
       StepLimit ghost{};
       StepLimit& proposed = owned(c) ? best : ghost;

@@ -20,6 +20,24 @@ struct NodesOfArray {
   KOKKOS_INLINE_FUNCTION Vec3 operator()(int n) const { return x[n]; }
 };
 
+// ... as points of the sweep, and the corner-face vector of node k of face f
+// from a sweep of face f alone.
+struct PointsOfArray {
+  const Vec3* x;
+  KOKKOS_INLINE_FUNCTION hex::detail::Point<double> operator()(int n) const {
+    return {x[n].x, x[n].y, x[n].z};
+  }
+};
+struct FaceVectorsOfArray {
+  const Vec3* x;
+  KOKKOS_INLINE_FUNCTION hex::detail::Point<double> operator()(int f, int k) const {
+    const PointsOfArray point{x};
+    hex::detail::FaceSweep<double> face;
+    hex::detail::sweepFace(point, point(0), f, face);
+    return hex::detail::cornerFaceVector(face, k);
+  }
+};
+
 // Unit cube in VTK order.
 void unitCube(Vec3 x[8]) {
   const Vec3 cube[8] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
@@ -212,14 +230,8 @@ TEST(Geometry, StagedFormGivesTheSweepsBitsCornerByCorner) {
     EXPECT_EQ(shape.centroid.y, fused.shape.centroid.y);
     EXPECT_EQ(shape.centroid.z, fused.shape.centroid.z);
     EXPECT_EQ(shape.max_face_area, fused.shape.max_face_area);
-    const auto face_vector = [&](int f, int k) {
-      hex::detail::FaceSweep<double> face;
-      hex::detail::sweepFace([&](int n) { return hex::detail::nodePoint(node, n); },
-                             hex::detail::nodePoint(node, 0), f, face);
-      return hex::detail::cornerFaceVector(face, k);
-    };
     for (int p = 0; p < 8; ++p) {
-      const hex::CornerSums corner = hex::cornerOfFaces(face_vector, p);
+      const hex::CornerSums corner = hex::cornerOfFaces(FaceVectorsOfArray{x}, p);
       EXPECT_EQ(corner.vector.x, fused.corner[p].x) << "trial " << trial << " corner " << p;
       EXPECT_EQ(corner.vector.y, fused.corner[p].y);
       EXPECT_EQ(corner.vector.z, fused.corner[p].z);
