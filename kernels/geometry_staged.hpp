@@ -102,8 +102,10 @@ struct StagedGeometry {
     return hex::detail::shapeOfSums(point(0), six_volume, weighted_sum, max_area2);
   }
 
-  // Corner p's sums: a z prism's from its nodes, a general hexahedron's from
-  // its 3 corner-face vectors, added in the sweep's (face) order.
+  // Corner p's sums: a z prism's from its nodes (each lane forms the base
+  // again, 5 node loads, rather than pass it through scratch), a general
+  // hexahedron's from its 3 corner-face vectors, added in the sweep's (face)
+  // order.
   KOKKOS_INLINE_FUNCTION hex::CornerSums corner(const NodesOfCell& nodes, const ScratchRow& row,
                                                 int p) const {
     using hex::detail::Point;
