@@ -397,15 +397,9 @@ struct NodesOfCell {
   KOKKOS_INLINE_FUNCTION Vec3 operator()(int n) const { return loadVec3(x_n, cell_nodes(c, n)); }
 };
 
-// The staged form's shape of a cell: a z prism's in closed form (its base
-// kept for prismCorner), a general hexahedron's from its 24 triangles.
-KOKKOS_INLINE_FUNCTION hex::CellShape stagedShape(const NodesOfCell& nodes, bool z_prism,
-                                                  hex::PrismBase& base) {
-  return z_prism ? hex::prismBase(nodes, base) : hex::sweptShape(nodes);
-}
 // StageEnd::ForRemap's part of the closure at the end of a stage: volume,
-// centroid and volume shares (`share`: here; the staged form shares them in
-// a kernel of its own), and the checks that need no equation of state (a
+// centroid and volume shares (`share`: a mixed cell's new volume shared
+// among its materials, shareVolumeChange), and the checks that need no equation of state (a
 // tangled cell, a non-finite energy or density). Proposes no time step.
 KOKKOS_INLINE_FUNCTION void cellShapeForRemap(const hex::CellShape& shape, const State& s, Index c,
                                               StepLimit& best,
@@ -420,19 +414,6 @@ KOKKOS_INLINE_FUNCTION void cellShapeForRemap(const hex::CellShape& shape, const
   const double e = s.E_c(c) - 0.5 * dot(v, v);
   const bool finite_state = math::isfinite(e) && math::isfinite(s.m_c(c) / volume);
   if (!finite_state) proposeStepLimit(best, -1.0, c, kBadState);
-}
-
-// The staged form's volume sharing at the end of a stage: a mixed cell's new
-// volume shared among its materials (shareVolumeChange, from the step-start
-// state, the same bits as the fused form's).
-KOKKOS_INLINE_FUNCTION void shareCellVolume(const State& s, const NodesOfCell& nodes,
-                                            bool z_prisms) {
-  int present = 0;
-  LAGREMAP_NO_UNROLL
-  for (int k = 0; k < s.n_materials; ++k) present += s.alpha_ck0(nodes.c, k) > 0.0;
-  if (present < 2) return;
-  hex::PrismBase base{};  // (read on prisms only)
-  shareVolumeChange(s, nodes.c, stagedShape(nodes, z_prisms, base).volume);
 }
 
 }  // namespace lagremap

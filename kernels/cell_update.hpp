@@ -138,15 +138,12 @@ KOKKOS_FORCEINLINE_FUNCTION void updateMaterialsPartByPart(const CellNodesView& 
 // cell's stored E and V, e = E - |V|^2/2: the same bits), the energies
 // first and the deviators in a call of their own (one call with both
 // spilled 140 to 500 bytes under 128 registers on sm_90: the gradient and
-// volume ratios recomputed cost less), then, `share`, a mixed cell's
-// volume sharing at its new shape (shareCellVolume: after the materials,
-// which read the stage's volume fractions before it). At most 128 threads
-// a block and 4 blocks an SM: 128 registers a thread on sm_90.
+// volume ratios recomputed cost less). At most 128 threads a block and 4
+// blocks an SM: 128 registers a thread on sm_90.
 template <int kParts>
-static void updateMaterialParts(const Mesh& mesh, const State& state, double dt_stage, bool share) {
+static void updateMaterialParts(const Mesh& mesh, const State& state, double dt_stage) {
   const auto cell_nodes = mesh.cell_nodes;
   const auto x_n = mesh.x_n;
-  const bool z_prisms = mesh.z_prisms;
   const auto s = state;
   using Cells = Kokkos::RangePolicy<ExecSpace, Kokkos::LaunchBounds<128, 4>>;
   Kokkos::parallel_for(
@@ -154,23 +151,21 @@ static void updateMaterialParts(const Mesh& mesh, const State& state, double dt_
         const Vec3 velocity = loadVec3(s.v_c, c);
         detail::updateMaterialsPartByPart<kParts>(cell_nodes, x_n, s, dt_stage, c,
                                                   s.E_c(c) - 0.5 * dot(velocity, velocity));
-        if (share) shareCellVolume(s, NodesOfCell{cell_nodes, x_n, c}, z_prisms);
       });
 }
 
 // The staged form's cell update: the cells' motion on lanes (detail::
 // CellMotionOnLanes, 40 registers on sm_90), then their materials' parts
-// (updateMaterialParts: a mixed run's energies, the deviators; `share`: the
-// mixed cells' volumes shared at their new shapes) a cell to a thread.
-static inline void updateCellsStaged(const Mesh& mesh, const State& state, double dt_stage,
-                                     bool share) {
+// (updateMaterialParts: a mixed run's energies, the deviators) a cell to a
+// thread. (A mixed cell's volume sharing at its new shape is the stage-end
+// geometry's, detail::StagedGeometry, as in the fused form.)
+static inline void updateCellsStaged(const Mesh& mesh, const State& state, double dt_stage) {
   const bool mixed = state.n_materials > 1;
   if (mixed) {
     updateCellMotion<false>(mesh, state, dt_stage);
   } else {
     updateCellMotion<true>(mesh, state, dt_stage);
   }
-  share = share && mixed;
   const int parts = (mixed ? int(kMaterialEnergies) : 0) |
                     (state.has_solids ? int(kHypoElasticParts) : 0) |
                     (state.has_neo_hookean ? int(kNeoHookeanParts) : 0);
@@ -179,22 +174,22 @@ static inline void updateCellsStaged(const Mesh& mesh, const State& state, doubl
     case 0:
       return;
     case kEnergies:
-      return updateMaterialParts<kEnergies>(mesh, state, dt_stage, share);
+      return updateMaterialParts<kEnergies>(mesh, state, dt_stage);
     case kHypo:
-      return updateMaterialParts<kHypo>(mesh, state, dt_stage, share);
+      return updateMaterialParts<kHypo>(mesh, state, dt_stage);
     case kEnergies | kHypo:
-      return updateMaterialParts<kEnergies | kHypo>(mesh, state, dt_stage, share);
+      return updateMaterialParts<kEnergies | kHypo>(mesh, state, dt_stage);
     case kNeo:
-      return updateMaterialParts<kNeo>(mesh, state, dt_stage, share);
+      return updateMaterialParts<kNeo>(mesh, state, dt_stage);
     case kEnergies | kNeo:
-      return updateMaterialParts<kEnergies | kNeo>(mesh, state, dt_stage, share);
+      return updateMaterialParts<kEnergies | kNeo>(mesh, state, dt_stage);
     default:  // both kinds of deviator, apart (in one kernel they held 161 registers)
       if (mixed) {
-        updateMaterialParts<kEnergies | kHypo>(mesh, state, dt_stage, false);
+        updateMaterialParts<kEnergies | kHypo>(mesh, state, dt_stage);
       } else {
-        updateMaterialParts<kHypo>(mesh, state, dt_stage, false);
+        updateMaterialParts<kHypo>(mesh, state, dt_stage);
       }
-      return updateMaterialParts<kNeo>(mesh, state, dt_stage, share);
+      return updateMaterialParts<kNeo>(mesh, state, dt_stage);
   }
 }
 
@@ -215,7 +210,7 @@ static inline void updateCells(const Mesh& mesh, const State& state, double dt_s
       return;
     }
   }
-  updateCellsStaged(mesh, state, dt_stage, false);
+  updateCellsStaged(mesh, state, dt_stage);
 }
 
 // The end of a stage in one sweep: each cell's update, then its geometry and
@@ -255,16 +250,15 @@ static inline void updateCellsAndGeometry(const Mesh& mesh, const State& state, 
           into);
     }
   }
-  // the cells' update with the mixed cells' volume sharing, then the checks
-  // or the closure on the shared volumes (a kernel of its own: with the
-  // sharing it held 154 registers on sm_90)
-  updateCellsStaged(mesh, state, dt_stage, true);
+  // the cells' update, then the mixed cells' volume sharing and the checks
+  // or the closure at the new shapes
+  updateCellsStaged(mesh, state, dt_stage);
   if (what == StageEnd::ForRemap) {
     return stepLimitOverCellNodes<StageEnd::ForRemap>("lagremap::cell_update::shape", mesh, state,
-                                                      controls, into);
+                                                      controls, into, true);
   }
   stepLimitOverCellNodes<StageEnd::Full>("lagremap::cell_update::geometry", mesh, state, controls,
-                                         into);
+                                         into, true);
 }
 
 }  // namespace lagremap

@@ -94,7 +94,8 @@ static inline void computeGeometry(const Mesh& mesh, const State& state,
           into);
     }
   }
-  stepLimitOverCellNodes<StageEnd::Full>("lagremap::geometry::cells", mesh, state, controls, into);
+  stepLimitOverCellNodes<StageEnd::Full>("lagremap::geometry::cells", mesh, state, controls, into,
+                                         false);
 }
 
 // The same, waited for (set-up, tests: it allocates its result).

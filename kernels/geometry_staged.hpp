@@ -45,6 +45,9 @@ using GeometryMember = GeometryTeams<StageEnd::Full>::member_type;
 
 // The stage end `kWhat` (StageEnd) of a mesh's cells, their time-step
 // candidates reduced (a ghost cell's are its owner's to propose).
+// `end_of_stage`: the nodes have just moved in a Lagrangian stage, so the
+// closure's lane shares a mixed cell's volume change among its materials
+// first (shareVolumeChange, as the fused form's closure does).
 template <StageEnd kWhat>
 struct StagedGeometry {
   CellNodesView cell_nodes;
@@ -54,6 +57,7 @@ struct StagedGeometry {
   TimeStepControls controls;
   bool z_prisms;
   Index n_cells;
+  bool end_of_stage;
 
   // The cell's shape, in every lane: a z prism's in closed form, a general
   // hexahedron's from the terms its face lanes leave (and with kWhat Full
@@ -147,12 +151,13 @@ struct StagedGeometry {
       StepLimit ghost{};
       StepLimit& proposed = owned(c) ? best : ghost;
       if constexpr (kWhat == StageEnd::Full) {
-        const CornerImpedance coefficients = cellThermoOnShape(
-            cell_shape, s, controls, c, proposed, false, nullptr, [](const CornerImpedance&) {});
+        const CornerImpedance coefficients =
+            cellThermoOnShape(cell_shape, s, controls, c, proposed, end_of_stage, nullptr,
+                              [](const CornerImpedance&) {});
         row(geometry_lanes::kImpedance) = coefficients.normal_part;
         row(geometry_lanes::kImpedance + 1) = coefficients.transverse;
       } else {
-        cellShapeForRemap(cell_shape, s, c, proposed, nullptr, false);
+        cellShapeForRemap(cell_shape, s, c, proposed, nullptr, end_of_stage);
       }
     });
     if constexpr (kWhat == StageEnd::Full) corners(team, nodes, row);
@@ -174,13 +179,15 @@ struct StagedGeometry {
 }  // namespace detail
 
 // The stage end `kWhat` of a mesh's cells in the staged form
-// (detail::StagedGeometry), the smallest time-step candidate left in `into`
-// without waiting.
+// (detail::StagedGeometry; `end_of_stage` there), the smallest time-step
+// candidate left in `into` without waiting.
 template <StageEnd kWhat>
 static void stepLimitOverCellNodes(const char* label, const Mesh& mesh, const State& state,
-                                   const TimeStepControls& controls, const StepLimitView& into) {
-  const detail::StagedGeometry<kWhat> staged{mesh.cell_nodes, mesh.x_n,      mesh.cell_owned, state,
-                                             controls,        mesh.z_prisms, mesh.n_cells};
+                                   const TimeStepControls& controls, const StepLimitView& into,
+                                   bool end_of_stage) {
+  const detail::StagedGeometry<kWhat> staged{
+      mesh.cell_nodes, mesh.x_n,      mesh.cell_owned, state,
+      controls,        mesh.z_prisms, mesh.n_cells,    end_of_stage && state.n_materials > 1};
   Kokkos::parallel_reduce(label, staged.policy(), staged, StepLimitIntoView(into));
 }
 
