@@ -14,6 +14,7 @@
 #include "hex.hpp"
 #include "kernel_form.hpp"
 #include "material_update.hpp"
+#include "material_update_staged.hpp"
 #include "time_step.hpp"
 
 namespace lagremap {
@@ -61,38 +62,54 @@ namespace detail {
 // The same in the staged form: corner p's terms by lane p (cell_teams.hpp),
 // then their sums in corner order, the same bits. kOneMaterial: the cell's
 // one material takes e^k = e_new (what updateMaterials sets); with several,
-// the materials' energies are the next kernel's (updateMaterialParts).
+// the materials share e_new out (MaterialLanes::energies: a mixed cell's
+// budget from the velocity terms the corner lanes leave in the row, the
+// budget's columns before the motion's).
 template <bool kOneMaterial>
 struct CellMotionOnLanes {
-  enum : int { kForce = 0, kPower = 24, kDvdt = 32, kColumns = 40 };
+  enum : int {
+    kBase = kOneMaterial ? 0 : int(material_lanes::kBudgetColumns),
+    kForce = kBase,
+    kPower = kBase + 24,
+    kDvdt = kBase + 32,
+    kColumns = kBase + 40,
+  };
   using Teams = Kokkos::TeamPolicy<ExecSpace>;
 
-  CellNodesView cell_nodes;
-  State s;
-  double dt_stage;
+  MaterialLanes lanes;
   Index n_cells;
 
   KOKKOS_INLINE_FUNCTION void operator()(const Teams::member_type& team) const {
+    const State& s = lanes.s;
     cell_teams::forCellsOfTeam(
         team, n_cells, kColumns, [&](Index c, const cell_teams::ScratchRow& row) {
           Kokkos::parallel_for(Kokkos::ThreadVectorRange(team, 8), [&](const int p) {
             Vec3 v_node;
-            const Vec3 f_corner = cornerForce(cell_nodes, s, c, p, v_node);
+            const Vec3 f_corner = cornerForce(lanes.cell_nodes, s, c, p, v_node);
+            const Vec3 corner_vector = loadVec3(s.A_cp, 8 * c + p);
             row.store(kForce + 3 * p, f_corner);
             row(kPower + p) = dot(f_corner, v_node);
-            row(kDvdt + p) = dot(loadVec3(s.A_cp, 8 * c + p), v_node);
-          });
-          Kokkos::single(Kokkos::PerThread(team), [&]() {
-            Vec3 force{0, 0, 0};
-            double power = 0.0, dvdt = 0.0;
-            for (int p = 0; p < 8; ++p) {
-              force += row.vec3(kForce + 3 * p);
-              power += row(kPower + p);
-              dvdt += row(kDvdt + p);
+            row(kDvdt + p) = dot(corner_vector, v_node);
+            if constexpr (!kOneMaterial) {
+              MaterialLanes::storeVelocityTerms(row, p, v_node, corner_vector);
             }
-            const double e_new = moveCell(s, dt_stage, c, force, power, dvdt);
-            if constexpr (kOneMaterial) s.e_ck(c, 0) = e_new;
           });
+          double e_new = 0.0;
+          Kokkos::single(
+              Kokkos::PerThread(team),
+              [&](double& e) {
+                Vec3 force{0, 0, 0};
+                double power = 0.0, dvdt = 0.0;
+                for (int p = 0; p < 8; ++p) {
+                  force += row.vec3(kForce + 3 * p);
+                  power += row(kPower + p);
+                  dvdt += row(kDvdt + p);
+                }
+                e = moveCell(s, lanes.dt_stage, c, force, power, dvdt);
+                if constexpr (kOneMaterial) s.e_ck(c, 0) = e;
+              },
+              e_new);
+          if constexpr (!kOneMaterial) lanes.energies(team, c, row, e_new);
         });
   }
 };
@@ -106,91 +123,47 @@ KOKKOS_FORCEINLINE_FUNCTION void updateCell(const CellNodesView& cell_nodes, con
                   relaxation);
 }
 
-// The staged form's cell motion (detail::CellMotionOnLanes).
+// The staged form's cell motion (detail::CellMotionOnLanes), with a mixed
+// run's energies.
 template <bool kOneMaterial>
 static void updateCellMotion(const Mesh& mesh, const State& state, double dt_stage) {
   using Motion = detail::CellMotionOnLanes<kOneMaterial>;
-  const Motion motion{mesh.cell_nodes, state, dt_stage, mesh.n_cells};
+  const Motion motion{{mesh.cell_nodes, mesh.x_n, state, dt_stage}, mesh.n_cells};
   Kokkos::parallel_for(
       "lagremap::cell_update::corner_forces",
       cell_teams::overCells<typename Motion::Teams>(mesh.n_cells, Motion::kColumns), motion);
 }
 
-namespace detail {
-// updateMaterials<kParts> a part at a time: the energies, then the deviators.
+// The staged form's second kernel of the cell update: the deviator parts
+// kParts of the materials' update (detail::StagedDeviators).
 template <int kParts>
-KOKKOS_FORCEINLINE_FUNCTION void updateMaterialsPartByPart(const CellNodesView& cell_nodes,
-                                                           const Vec3View& x_n, const State& s,
-                                                           double dt_stage, Index c, double e_new) {
-  StageRelaxation relaxation;
-  constexpr int kDeviators = kParts & ~kMaterialEnergies;
-  if constexpr (kDeviators != kParts) {
-    updateMaterials<kMaterialEnergies>(cell_nodes, x_n, s, dt_stage, c, e_new, relaxation);
-  }
-  if constexpr (kDeviators != 0) {
-    updateMaterials<kDeviators>(cell_nodes, x_n, s, dt_stage, c, e_new, relaxation);
-  }
-}
-}  // namespace detail
-
-// The staged form's second kernel of the cell update, a cell to a thread:
-// the parts kParts of its materials' update (updateMaterials<part> from the
-// cell's stored E and V, e = E - |V|^2/2: the same bits), the energies
-// first and the deviators in a call of their own (one call with both
-// spilled 140 to 500 bytes under 128 registers on sm_90: the gradient and
-// volume ratios recomputed cost less). At most 128 threads a block and 4
-// blocks an SM: 128 registers a thread on sm_90.
-template <int kParts>
-static void updateMaterialParts(const Mesh& mesh, const State& state, double dt_stage) {
-  const auto cell_nodes = mesh.cell_nodes;
-  const auto x_n = mesh.x_n;
-  const auto s = state;
-  using Cells = Kokkos::RangePolicy<ExecSpace, Kokkos::LaunchBounds<128, 4>>;
-  Kokkos::parallel_for(
-      "lagremap::cell_update::materials", Cells(0, mesh.n_cells), KOKKOS_LAMBDA(const Index c) {
-        const Vec3 velocity = loadVec3(s.v_c, c);
-        detail::updateMaterialsPartByPart<kParts>(cell_nodes, x_n, s, dt_stage, c,
-                                                  s.E_c(c) - 0.5 * dot(velocity, velocity));
-      });
+static void updateDeviators(const Mesh& mesh, const State& state, double dt_stage) {
+  using Deviators = detail::StagedDeviators<kParts>;
+  const Deviators deviators{{mesh.cell_nodes, mesh.x_n, state, dt_stage}, mesh.n_cells};
+  Kokkos::parallel_for("lagremap::cell_update::deviators",
+                       cell_teams::overCells<typename Deviators::Teams>(
+                           mesh.n_cells, detail::material_lanes::kColumns),
+                       deviators);
 }
 
-// The staged form's cell update: the cells' motion on lanes (detail::
-// CellMotionOnLanes, 40 registers on sm_90), then their materials' parts
-// (updateMaterialParts: a mixed run's energies, the deviators) a cell to a
-// thread. (A mixed cell's volume sharing at its new shape is the stage-end
-// geometry's, detail::StagedGeometry, as in the fused form.)
+// The staged form's cell update: the cells' motion and a mixed run's
+// energies (detail::CellMotionOnLanes), then, with solids, their deviators
+// (updateDeviators). (A mixed cell's volume sharing at its new shape is the
+// stage-end geometry's, detail::StagedGeometry, as in the fused form.)
 static inline void updateCellsStaged(const Mesh& mesh, const State& state, double dt_stage) {
-  const bool mixed = state.n_materials > 1;
-  if (mixed) {
+  if (state.n_materials > 1) {
     updateCellMotion<false>(mesh, state, dt_stage);
   } else {
     updateCellMotion<true>(mesh, state, dt_stage);
   }
-  const int parts = (mixed ? int(kMaterialEnergies) : 0) |
-                    (state.has_solids ? int(kHypoElasticParts) : 0) |
-                    (state.has_neo_hookean ? int(kNeoHookeanParts) : 0);
-  constexpr int kEnergies = kMaterialEnergies, kHypo = kHypoElasticParts, kNeo = kNeoHookeanParts;
-  switch (parts) {
-    case 0:
-      return;
-    case kEnergies:
-      return updateMaterialParts<kEnergies>(mesh, state, dt_stage);
-    case kHypo:
-      return updateMaterialParts<kHypo>(mesh, state, dt_stage);
-    case kEnergies | kHypo:
-      return updateMaterialParts<kEnergies | kHypo>(mesh, state, dt_stage);
-    case kNeo:
-      return updateMaterialParts<kNeo>(mesh, state, dt_stage);
-    case kEnergies | kNeo:
-      return updateMaterialParts<kEnergies | kNeo>(mesh, state, dt_stage);
-    default:  // both kinds of deviator, apart (in one kernel they held 161 registers)
-      if (mixed) {
-        updateMaterialParts<kEnergies | kHypo>(mesh, state, dt_stage);
-      } else {
-        updateMaterialParts<kHypo>(mesh, state, dt_stage);
-      }
-      return updateMaterialParts<kNeo>(mesh, state, dt_stage);
-  }
+  // the deviators of the strengths the materials have (both where the state
+  // does not say, State::has_hypo_elastic)
+  const bool known = state.has_hypo_elastic || state.has_neo_hookean;
+  const bool hypo = state.has_solids && (state.has_hypo_elastic || !known);
+  const bool neo = state.has_solids && (state.has_neo_hookean || !known);
+  // (both kinds in a kernel each: in one they spilled on sm_90)
+  if (hypo) updateDeviators<kHypoElasticParts>(mesh, state, dt_stage);
+  if (neo) updateDeviators<kNeoHookeanParts>(mesh, state, dt_stage);
 }
 
 // Every cell's update, in the form asked for (the volumes not shared).

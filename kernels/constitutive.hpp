@@ -47,8 +47,10 @@ KOKKOS_FORCEINLINE_FUNCTION Mat3 hughesWingetRotation(const Mat3& grad_v, double
 
 KOKKOS_FORCEINLINE_FUNCTION SymMat3 jaumannUpdate(const SymMat3& S, const Mat3& grad_v, double mu,
                                                   double dt) {
+  // (the strain increment first: L is then held as its 3 spin entries)
+  const SymMat3 strain_increment = (2.0 * mu * dt) * dev(symPart(grad_v));
   const SymMat3 rotated = pushForward(hughesWingetRotation(grad_v, dt), S);  // Q S Q^T
-  return dev(rotated + (2.0 * mu * dt) * dev(symPart(grad_v)));
+  return dev(rotated + strain_increment);
 }
 
 struct ReturnMapResult {

@@ -46,25 +46,91 @@ LAGREMAP_OUT_OF_LINE KOKKOS_INLINE_FUNCTION void hardeningReturn(const State& s,
 // the stress): it keeps its value until it is a material again.
 // `relaxation`: a mixed cell's relaxation volumes, for the geometry of the same
 // sweep (StageRelaxation).
-// What updateMaterials does: the fused form all of it in one kernel, the
-// staged form a part a call (kernels/cell_update.hpp; the energies first:
-// the deviators' updates read nothing they write, and they write the
-// start-of-stage deviators the energies' stress power takes).
+// The parts of the update: the fused form does all of them (updateMaterials);
+// the staged form (material_update_staged.hpp) the energies with the cell
+// motion and the deviators of the kinds a run has in a kernel of their own.
+// A mixed cell's budget takes every material's work before any deviator is
+// written: the work's stress power takes the start-of-stage deviators.
 enum MaterialParts : int {
   kMaterialEnergies = 1,  // e^k (and a mixed cell's budget)
   kHypoElasticParts = 2,  // hypo-elastic deviators
-  kNeoHookeanParts = 4,   // Neo-Hookean B (the stage deformation a corner vector at a time)
+  kNeoHookeanParts = 4,   // Neo-Hookean B
   kAllMaterialParts = 7,  // the fused form
 };
 
-template <int kParts = kAllMaterialParts>
+// Material k's energy in a mixed cell: m^k (e^k - e^k,n) = W^k + share^k D
+// (`work`: W^k, detail::stageWork, 0 for a trace).
+KOKKOS_FORCEINLINE_FUNCTION void mixedMaterialEnergy(const State& s, Index c, int k, double work,
+                                                     const detail::MixedCellBudget& budget) {
+  const double share = detail::dissipationShare(s, c, k, budget);
+  s.e_ck(c, k) = s.e_ck0(c, k) + (work + share * budget.dissipation) / s.m_ck(c, k);
+}
+
+// What material k of a cell brings to its deviator's update over the stage.
+struct MaterialStage {
+  int k;
+  bool mixed;        // the cell holds several materials
+  bool trace;        // ... and k is a trace (traceFraction)
+  double own_ratio;  // k's own volume ratio (1 in a pure cell)
+};
+
+// A hypo-elastic solid's deviator returned to its yield surface from the
+// trial deviator, a hardening solid's with its plastic strain.
+KOKKOS_FORCEINLINE_FUNCTION void returnToYield(const State& s, Index c, int k, const SymMat3& trial,
+                                               double dt_stage) {
+  const MaterialParams& material = s.materials(k);
+  if (hasPlasticStrain(material)) {
+    detail::hardeningReturn(s, c, k, trial, material, dt_stage);
+  } else {  // perfectly plastic: no strain to carry
+    storeSym(s.S_ck, c, k, radialReturn(trial, material.yield_stress).S);
+  }
+}
+
+// The deviator of material k (present: alpha^k > 0) of cell c over the
+// stage, of the kinds kParts asks for, given the cell's velocity gradient.
+// `deformation()`: the cell's stage deformation F, asked for by a
+// Neo-Hookean material alone; `to_yield(trial)`: a hypo-elastic solid's
+// return from its trial deviator (returnToYield).
+template <int kParts, class Deformation, class ToYield>
+KOKKOS_FORCEINLINE_FUNCTION void updateDeviator(const State& s, Index c, const MaterialStage& m,
+                                                double dt_stage, const Mat3& gradient,
+                                                const Deformation& deformation,
+                                                const ToYield& to_yield) {
+  constexpr bool kHypo = (kParts & kHypoElasticParts) != 0;
+  constexpr bool kNeo = (kParts & kNeoHookeanParts) != 0;
+  const int k = m.k;
+  const MaterialParams& material = s.materials(k);
+  if (m.trace) {
+    if (kHypo && material.strength == StrengthKind::HypoElastic) {
+      storeSym(s.S_ck, c, k, loadSym(s.S_ck0, c, k));
+      if (hasPlasticStrain(material)) s.eps_ck(c, k) = s.eps_ck0(c, k);
+    } else if (kNeo && material.strength == StrengthKind::NeoHookean) {
+      storeSym(s.B_ck, c, k, loadSym(s.B_ck0, c, k));
+    }
+  } else if (kHypo && material.strength == StrengthKind::HypoElastic) {
+    const Mat3 gradient_k =
+        detail::materialGradient(s, c, k, m.mixed, gradient, m.own_ratio, dt_stage);
+    to_yield(jaumannUpdate(loadSym(s.S_ck0, c, k), gradient_k, material.mu, dt_stage));
+  } else if (kNeo && material.strength == StrengthKind::NeoHookean) {
+    const Mat3 cell_deformation = deformation();
+    Mat3 own = cell_deformation;
+    Vec3 n;
+    if (m.mixed && isSolidBody(s, c, k, n)) {
+      // stretched along n to its own volume ratio: det(F_s) = J^k
+      Mat3 normal_stretch = identityMat();
+      addOuter(normal_stretch, m.own_ratio / det(cell_deformation) - 1.0, n, n);
+      own = normal_stretch * cell_deformation;
+    }
+    storeSym(s.B_ck, c, k, pushForward(own, loadSym(s.B_ck0, c, k)));
+  }
+}
+
+// The materials of cell c, all parts (the fused form): which are present,
+// a pure cell's energy, a mixed cell's budget, then each present material's
+// energy and deviator.
 KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, const Vec3View& x_n,
                                             const State& s, double dt_stage, Index c, double e_new,
                                             StageRelaxation& relaxation) {
-  constexpr bool kEnergies = (kParts & kMaterialEnergies) != 0;
-  constexpr bool kHypo = (kParts & kHypoElasticParts) != 0;
-  constexpr bool kNeo = (kParts & kNeoHookeanParts) != 0;
-  constexpr bool kStaged = kParts != kAllMaterialParts;
   int present = 0, last = 0;
   LAGREMAP_NO_UNROLL
   for (int k = 0; k < s.n_materials; ++k) {
@@ -74,24 +140,19 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
     }
   }
   const bool mixed = present > 1;
-  if (kEnergies && !mixed) s.e_ck(c, last) = e_new;
+  if (!mixed) s.e_ck(c, last) = e_new;
   // a pure fluid cell has no deviator to update (whatever its neighbours)
   if (!mixed && s.materials(last).strength == StrengthKind::None) return;
-  if constexpr (!kHypo && !kNeo) {
-    if (!mixed) return;  // (only a mixed cell's budget is left)
-  }
   const Mat3 gradient = velocityGradient(cell_nodes, s, c);
   detail::MixedCellBudget budget;
-  if (mixed) {
-    if constexpr (kEnergies) {
-      detail::mixedCellBudget(s, c, e_new, gradient, dt_stage, budget, relaxation);
-    } else {  // the own volume ratios alone (the same numbers)
-      detail::ownVolumeRatios(s, c, dt_stage * s.vol_c(c) * trace(gradient), budget.own_ratio,
-                              relaxation);
-    }
-  }
-  bool deformation_known = false;
+  if (mixed) detail::mixedCellBudget(s, c, e_new, gradient, dt_stage, budget, relaxation);
+  bool deformation_known = false;  // (computed once, by the first Neo-Hookean material)
   Mat3 deformation = zeroMat();
+  const auto cell_deformation = [&]() {
+    if (!deformation_known) deformation = stageDeformation(cell_nodes, x_n, s, c);
+    deformation_known = true;
+    return deformation;
+  };
   const bool holds_elastic = mixed && cellHoldsElasticBody(s, s.alpha_ck, c);
   LAGREMAP_NO_UNROLL
   for (int k = 0; k < s.n_materials; ++k) {
@@ -99,53 +160,13 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
     if (!(alpha > 0.0)) continue;
     const bool trace = mixed && alpha < traceFraction(s, k, holds_elastic);
     const double own_ratio = mixed ? budget.own_ratio[k] : 1.0;
-    if (kEnergies && mixed) {
-      const double work =
-          trace
-              ? 0.0
-              : detail::materialWork(
-                    s, c, k, detail::materialGradient(s, c, k, true, gradient, own_ratio, dt_stage),
-                    own_ratio, dt_stage);
-      const double share = detail::dissipationShare(s, c, k, budget);
-      s.e_ck(c, k) = s.e_ck0(c, k) + (work + share * budget.dissipation) / s.m_ck(c, k);
+    if (mixed) {
+      mixedMaterialEnergy(
+          s, c, k, trace ? 0.0 : detail::stageWork(s, c, k, gradient, own_ratio, dt_stage), budget);
     }
-    const MaterialParams& material = s.materials(k);
-    if (trace) {
-      if (kHypo && material.strength == StrengthKind::HypoElastic) {
-        storeSym(s.S_ck, c, k, loadSym(s.S_ck0, c, k));
-        if (hasPlasticStrain(material)) s.eps_ck(c, k) = s.eps_ck0(c, k);
-      } else if (kNeo && material.strength == StrengthKind::NeoHookean) {
-        storeSym(s.B_ck, c, k, loadSym(s.B_ck0, c, k));
-      }
-    } else if (kHypo && material.strength == StrengthKind::HypoElastic) {
-      const Mat3 gradient_k =
-          detail::materialGradient(s, c, k, mixed, gradient, own_ratio, dt_stage);
-      const SymMat3 trial =
-          jaumannUpdate(loadSym(s.S_ck0, c, k), gradient_k, material.mu, dt_stage);
-      if (hasPlasticStrain(material)) {
-        detail::hardeningReturn(s, c, k, trial, material, dt_stage);
-      } else {  // perfectly plastic: no strain to carry
-        storeSym(s.S_ck, c, k, radialReturn(trial, material.yield_stress).S);
-      }
-    } else if (kNeo && material.strength == StrengthKind::NeoHookean) {
-      if (!deformation_known) {
-        if constexpr (kStaged) {
-          deformation = stagedStageDeformation(cell_nodes, x_n, s, c);
-        } else {
-          deformation = stageDeformation(cell_nodes, x_n, s, c);
-        }
-      }
-      deformation_known = true;
-      Mat3 own = deformation;
-      Vec3 n;
-      if (mixed && isSolidBody(s, c, k, n)) {
-        // stretched along n to its own volume ratio: det(F_s) = J^k
-        Mat3 normal_stretch = identityMat();
-        addOuter(normal_stretch, own_ratio / det(deformation) - 1.0, n, n);
-        own = normal_stretch * deformation;
-      }
-      storeSym(s.B_ck, c, k, pushForward(own, loadSym(s.B_ck0, c, k)));
-    }
+    updateDeviator<kAllMaterialParts>(
+        s, c, {k, mixed, trace, own_ratio}, dt_stage, gradient, cell_deformation,
+        [&](const SymMat3& trial) { returnToYield(s, c, k, trial, dt_stage); });
   }
 }
 

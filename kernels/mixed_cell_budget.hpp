@@ -123,12 +123,20 @@ KOKKOS_FORCEINLINE_FUNCTION double dissipationShare(const State& s, Index c, int
   return s.m_ck(c, k) / budget.present_mass;
 }
 
-// The budget of a mixed cell whose specific internal energy is now e_new.
-KOKKOS_FORCEINLINE_FUNCTION void mixedCellBudget(const State& s, Index c, double e_new,
-                                                 const Mat3& gradient, double dt_stage,
-                                                 MixedCellBudget& budget,
-                                                 StageRelaxation& relaxation) {
-  ownVolumeRatios(s, c, dt_stage * s.vol_c(c) * trace(gradient), budget.own_ratio, relaxation);
+// Material k's work W^k over the stage at its own volume ratio (a solid
+// body's velocity gradient its own, materialGradient).
+KOKKOS_FORCEINLINE_FUNCTION double stageWork(const State& s, Index c, int k, const Mat3& gradient,
+                                             double own_ratio, double dt_stage) {
+  return materialWork(s, c, k, materialGradient(s, c, k, true, gradient, own_ratio, dt_stage),
+                      own_ratio, dt_stage);
+}
+
+// The budget's sums of a mixed cell whose specific internal energy is now
+// e_new, in material order: D less each material's work (`work(k)`: W^k of
+// a material that is no trace) and the masses that share it.
+template <class Work>
+KOKKOS_FORCEINLINE_FUNCTION void sumBudget(const State& s, Index c, double e_new, const Work& work,
+                                           MixedCellBudget& budget) {
   const Vec3 v0 = loadVec3(s.v_c0, c);
   budget.dissipation = s.m_c(c) * (e_new - (s.E_c0(c) - 0.5 * dot(v0, v0)));
   const bool holds_elastic = cellHoldsElasticBody(s, s.alpha_ck, c);
@@ -143,12 +151,19 @@ KOKKOS_FORCEINLINE_FUNCTION void mixedCellBudget(const State& s, Index c, double
     } else if (s.e_ck0(c, k) > 0.0) {
       budget.gas_heat += s.m_ck(c, k) * s.e_ck0(c, k);
     }
-    if (alpha >= traceFraction(s, k, holds_elastic)) {
-      const Mat3 gradient_k =
-          materialGradient(s, c, k, true, gradient, budget.own_ratio[k], dt_stage);
-      budget.dissipation -= materialWork(s, c, k, gradient_k, budget.own_ratio[k], dt_stage);
-    }
+    if (alpha >= traceFraction(s, k, holds_elastic)) budget.dissipation -= work(k);
   }
+}
+
+// The budget of a mixed cell whose specific internal energy is now e_new.
+KOKKOS_FORCEINLINE_FUNCTION void mixedCellBudget(const State& s, Index c, double e_new,
+                                                 const Mat3& gradient, double dt_stage,
+                                                 MixedCellBudget& budget,
+                                                 StageRelaxation& relaxation) {
+  ownVolumeRatios(s, c, dt_stage * s.vol_c(c) * trace(gradient), budget.own_ratio, relaxation);
+  sumBudget(
+      s, c, e_new,
+      [&](int k) { return stageWork(s, c, k, gradient, budget.own_ratio[k], dt_stage); }, budget);
 }
 
 }  // namespace detail

@@ -1,8 +1,9 @@
 // A cell's kinematics over a stage: its velocity gradient L from the node
 // velocities and corner vectors (docs/method.md §A2), and its incremental
 // deformation gradient F from the start-of-step geometry (docs/method.md
-// §A7, §3.3), whole or a corner vector at a time (the staged form). Read by
-// the materials' update (material_update.hpp, mixed_cell_budget.hpp).
+// §A7, §3.3). Read by the materials' update (material_update.hpp,
+// mixed_cell_budget.hpp; the staged form sums the same terms from its corner
+// lanes, material_update_staged.hpp).
 #pragma once
 
 #include "../data/state.hpp"
@@ -38,27 +39,6 @@ KOKKOS_INLINE_FUNCTION Mat3 stageDeformation(const CellNodesView& cell_nodes, co
     // relative to node 0 (sum_p A_cp = 0), to keep round-off small
     addOuter(deformation, 1.0 / volume_start,
              loadVec3(x_n, cell_nodes(c, p)) - loadVec3(x_n, cell_nodes(c, 0)), corner_start[p]);
-  }
-  return deformation;
-}
-
-// The same from one corner vector at a time (the staged form: the same
-// bits, without the 16 positions and vectors held at once).
-KOKKOS_INLINE_FUNCTION Mat3 stagedStageDeformation(const CellNodesView& cell_nodes,
-                                                   const Vec3View& x_n, const State& s, Index c) {
-  const NodesOfCell start{cell_nodes, s.x_n0, c};
-  const Vec3 x_start_0 = start(0);
-  double volume_start = 0.0;  // Euler's theorem for the cubic volume
-  LAGREMAP_NO_UNROLL
-  for (int p = 0; p < 8; ++p)
-    volume_start += dot(start(p) - x_start_0, hex::cornerVector(start, p));
-  volume_start /= 3.0;
-  const Vec3 x_0 = loadVec3(x_n, cell_nodes(c, 0));
-  Mat3 deformation = zeroMat();
-  LAGREMAP_NO_UNROLL
-  for (int p = 0; p < 8; ++p) {
-    addOuter(deformation, 1.0 / volume_start, loadVec3(x_n, cell_nodes(c, p)) - x_0,
-             hex::cornerVector(start, p));
   }
   return deformation;
 }
