@@ -223,11 +223,14 @@ struct MaterialLanes {
 
 // The deviators' kernel: the deviator parts kParts (kHypoElasticParts,
 // kNeoHookeanParts) of a mesh's cells (MaterialLanes::deviators). A GPU's
-// block of 128 threads, 5 an SM: at most 96 registers, 20 warps (a cell to
-// a thread held 126-128, 16 warps; at 80 the Jaumann update spilled).
+// block of 128 threads: the hypo-elastic ones 5 an SM, at most 96
+// registers, 20 warps (at 80 the Jaumann update spilled 108 B), the
+// Neo-Hookean ones 6, 80 registers, 24 warps (a cell to a thread held
+// 126-128, 16 warps).
 template <int kParts>
 struct StagedDeviators {
-  using Teams = Kokkos::TeamPolicy<ExecSpace, Kokkos::LaunchBounds<128, 5>>;
+  static constexpr unsigned kBlocks = kParts == kNeoHookeanParts ? 6 : 5;
+  using Teams = Kokkos::TeamPolicy<ExecSpace, Kokkos::LaunchBounds<128, kBlocks>>;
   MaterialLanes lanes;
   Index n_cells;
 
