@@ -134,11 +134,11 @@ static void updateCellMotion(const Mesh& mesh, const State& state, double dt_sta
       cell_teams::overCells<typename Motion::Teams>(mesh.n_cells, Motion::kColumns), motion);
 }
 
-// The staged form's second kernel of the cell update: the deviator parts
-// kParts of the materials' update (detail::StagedDeviators).
-template <int kParts>
+// The staged form's second kernel of the cell update: the deviators of the
+// kinds kKinds (DeviatorKinds; detail::StagedDeviators).
+template <int kKinds>
 static void updateDeviators(const Mesh& mesh, const State& state, double dt_stage) {
-  using Deviators = detail::StagedDeviators<kParts>;
+  using Deviators = detail::StagedDeviators<kKinds>;
   const Deviators deviators{{mesh.cell_nodes, mesh.x_n, state, dt_stage}, mesh.n_cells};
   Kokkos::parallel_for("lagremap::cell_update::deviators",
                        cell_teams::overCells<typename Deviators::Teams>(
@@ -162,8 +162,8 @@ static inline void updateCellsStaged(const Mesh& mesh, const State& state, doubl
   const bool hypo = state.has_solids && (state.has_hypo_elastic || !known);
   const bool neo = state.has_solids && (state.has_neo_hookean || !known);
   // (both kinds in a kernel each: in one they spilled on sm_90)
-  if (hypo) updateDeviators<kHypoElasticParts>(mesh, state, dt_stage);
-  if (neo) updateDeviators<kNeoHookeanParts>(mesh, state, dt_stage);
+  if (hypo) updateDeviators<kHypoElasticDeviators>(mesh, state, dt_stage);
+  if (neo) updateDeviators<kNeoHookeanDeviators>(mesh, state, dt_stage);
 }
 
 // Every cell's update, in the form asked for (the volumes not shared).

@@ -46,16 +46,14 @@ LAGREMAP_OUT_OF_LINE KOKKOS_INLINE_FUNCTION void hardeningReturn(const State& s,
 // the stress): it keeps its value until it is a material again.
 // `relaxation`: a mixed cell's relaxation volumes, for the geometry of the same
 // sweep (StageRelaxation).
-// The parts of the update: the fused form does all of them (updateMaterials);
-// the staged form (material_update_staged.hpp) the energies with the cell
-// motion and the deviators of the kinds a run has in a kernel of their own.
-// A mixed cell's budget takes every material's work before any deviator is
-// written: the work's stress power takes the start-of-stage deviators.
-enum MaterialParts : int {
-  kMaterialEnergies = 1,  // e^k (and a mixed cell's budget)
-  kHypoElasticParts = 2,  // hypo-elastic deviators
-  kNeoHookeanParts = 4,   // Neo-Hookean B
-  kAllMaterialParts = 7,  // the fused form
+// The kinds of deviator a call of updateDeviator updates: both in the fused
+// form (updateMaterials); in the staged form (material_update_staged.hpp)
+// the kinds a run has, a kernel each, after a mixed cell's energies (the
+// cell motion's): the budget's work takes the start-of-stage deviators.
+enum DeviatorKinds : int {
+  kHypoElasticDeviators = 1,  // hypo-elastic S
+  kNeoHookeanDeviators = 2,   // Neo-Hookean B
+  kBothDeviators = 3,
 };
 
 // Material k's energy in a mixed cell: m^k (e^k - e^k,n) = W^k + share^k D
@@ -87,17 +85,17 @@ KOKKOS_FORCEINLINE_FUNCTION void returnToYield(const State& s, Index c, int k, c
 }
 
 // The deviator of material k (present: alpha^k > 0) of cell c over the
-// stage, of the kinds kParts asks for, given the cell's velocity gradient.
+// stage, of the kinds kKinds asks for, given the cell's velocity gradient.
 // `deformation()`: the cell's stage deformation F, asked for by a
 // Neo-Hookean material alone; `to_yield(trial)`: a hypo-elastic solid's
 // return from its trial deviator (returnToYield).
-template <int kParts, class Deformation, class ToYield>
+template <int kKinds, class Deformation, class ToYield>
 KOKKOS_FORCEINLINE_FUNCTION void updateDeviator(const State& s, Index c, const MaterialStage& m,
                                                 double dt_stage, const Mat3& gradient,
                                                 const Deformation& deformation,
                                                 const ToYield& to_yield) {
-  constexpr bool kHypo = (kParts & kHypoElasticParts) != 0;
-  constexpr bool kNeo = (kParts & kNeoHookeanParts) != 0;
+  constexpr bool kHypo = (kKinds & kHypoElasticDeviators) != 0;
+  constexpr bool kNeo = (kKinds & kNeoHookeanDeviators) != 0;
   const int k = m.k;
   const MaterialParams& material = s.materials(k);
   if (m.trace) {
@@ -164,7 +162,7 @@ KOKKOS_INLINE_FUNCTION void updateMaterials(const CellNodesView& cell_nodes, con
       mixedMaterialEnergy(
           s, c, k, trace ? 0.0 : detail::stageWork(s, c, k, gradient, own_ratio, dt_stage), budget);
     }
-    updateDeviator<kAllMaterialParts>(
+    updateDeviator<kBothDeviators>(
         s, c, {k, mixed, trace, own_ratio}, dt_stage, gradient, cell_deformation,
         [&](const SymMat3& trial) { returnToYield(s, c, k, trial, dt_stage); });
   }

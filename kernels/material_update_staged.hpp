@@ -34,7 +34,7 @@ enum : int {
   kCornerVector = 24,   // 8 x 3: A_cp, the stage start's corner vector
   kGradient = 48,       // 9: L, row by row
   kOwnRatio = 57,       // kMaxMaterials: each material's own volume ratio
-  kWork = 65,           // kMaxMaterials: each material's work W^k
+  kWork = 65,           // kMaxMaterials: each material's work W^k (a trace's not formed)
   kBudget = 73,         // 5: D, the present and condensed masses, alpha, the gases' heat
   kBudgetColumns = 78,  // (the budget's)
   kStartVector = 78,    // 8 x 3: the step start's corner vector (stageDeformation)
@@ -156,8 +156,10 @@ struct MaterialLanes {
     }
     sums(team, c, row, false);
     ownRatios(team, c, row);
+    const bool holds_elastic = cellHoldsElasticBody(s, s.alpha_ck, c);
     Kokkos::parallel_for(Kokkos::ThreadVectorRange(team, s.n_materials), [&](const int k) {
-      if (!(s.alpha_ck(c, k) > 0.0)) return;
+      const double alpha = s.alpha_ck(c, k);
+      if (!(alpha > 0.0 && alpha >= traceFraction(s, k, holds_elastic))) return;  // (a trace: none)
       row(material_lanes::kWork + k) = stageWork(s, c, k, matrix(row, material_lanes::kGradient),
                                                  row(material_lanes::kOwnRatio + k), dt_stage);
     });
@@ -169,7 +171,6 @@ struct MaterialLanes {
                               budget.present_alpha, budget.gas_heat};
       for (int i = 0; i < 5; ++i) row(material_lanes::kBudget + i) = sums[i];
     });
-    const bool holds_elastic = cellHoldsElasticBody(s, s.alpha_ck, c);
     Kokkos::parallel_for(Kokkos::ThreadVectorRange(team, s.n_materials), [&](const int k) {
       const double alpha = s.alpha_ck(c, k);
       if (!(alpha > 0.0)) return;
@@ -184,18 +185,20 @@ struct MaterialLanes {
     });
   }
 
-  // The deviators of cell c's materials of the kinds kParts asks for: the
+  // The deviators of cell c's materials of the kinds kKinds asks for: the
   // corner terms and their sums, a mixed cell's own volume ratios (one
-  // lane), then lane k material k's (updateDeviator), a hypo-elastic solid's
-  // trial left in the row and returned to its yield surface in a pass of its
+  // lane; recomputed, the same numbers as the energies', rather than kept in
+  // a View of their own across the two kernels), then lane k material k's (updateDeviator), a
+  // hypo-elastic solid's trial left in the row and returned to its yield surface in a pass of its
   // own (after the Jaumann update in one pass, the return spilled on sm_90).
-  template <int kParts, class Member>
+  template <int kKinds, class Member>
   KOKKOS_INLINE_FUNCTION void deviators(const Member& team, Index c, const ScratchRow& row) const {
     int last = 0;
     const bool mixed = presentMaterials(c, last) > 1;
     // a pure fluid cell has no deviator to update (whatever its neighbours)
     if (!mixed && s.materials(last).strength == StrengthKind::None) return;
-    const bool deforms = (kParts & kNeoHookeanParts) != 0 && cellHoldsElasticBody(s, s.alpha_ck, c);
+    const bool deforms =
+        (kKinds & kNeoHookeanDeviators) != 0 && cellHoldsElasticBody(s, s.alpha_ck, c);
     corners(team, c, row, deforms);
     sums(team, c, row, deforms);
     if (mixed) ownRatios(team, c, row);
@@ -204,13 +207,13 @@ struct MaterialLanes {
       const double alpha = s.alpha_ck(c, k);
       if (!(alpha > 0.0)) return;
       const bool trace = mixed && alpha < traceFraction(s, k, holds_elastic);
-      updateDeviator<kParts>(
+      updateDeviator<kKinds>(
           s, c, {k, mixed, trace, mixed ? row(material_lanes::kOwnRatio + k) : 1.0}, dt_stage,
           matrix(row, material_lanes::kGradient),
           [&]() { return matrix(row, material_lanes::kDeformation); },
           [&](const SymMat3& trial) { row.store(material_lanes::kTrial + 6 * k, trial); });
     });
-    if constexpr ((kParts & kHypoElasticParts) != 0) {
+    if constexpr ((kKinds & kHypoElasticDeviators) != 0) {
       Kokkos::parallel_for(Kokkos::ThreadVectorRange(team, s.n_materials), [&](const int k) {
         const double alpha = s.alpha_ck(c, k);
         if (!(alpha > 0.0 && s.materials(k).strength == StrengthKind::HypoElastic)) return;
@@ -221,15 +224,15 @@ struct MaterialLanes {
   }
 };
 
-// The deviators' kernel: the deviator parts kParts (kHypoElasticParts,
-// kNeoHookeanParts) of a mesh's cells (MaterialLanes::deviators). A GPU's
+// The deviators' kernel: the deviators of the kinds kKinds (DeviatorKinds)
+// of a mesh's cells (MaterialLanes::deviators). A GPU's
 // block of 128 threads: the hypo-elastic ones 5 an SM, at most 96
 // registers, 20 warps (at 80 the Jaumann update spilled 108 B), the
 // Neo-Hookean ones 6, 80 registers, 24 warps (a cell to a thread held
 // 126-128, 16 warps).
-template <int kParts>
+template <int kKinds>
 struct StagedDeviators {
-  static constexpr unsigned kBlocks = kParts == kNeoHookeanParts ? 6 : 5;
+  static constexpr unsigned kBlocks = kKinds == kNeoHookeanDeviators ? 6 : 5;
   using Teams = Kokkos::TeamPolicy<ExecSpace, Kokkos::LaunchBounds<128, kBlocks>>;
   MaterialLanes lanes;
   Index n_cells;
@@ -237,7 +240,7 @@ struct StagedDeviators {
   KOKKOS_INLINE_FUNCTION void operator()(const typename Teams::member_type& team) const {
     cell_teams::forCellsOfTeam(
         team, n_cells, material_lanes::kColumns,
-        [&](Index c, const ScratchRow& row) { lanes.deviators<kParts>(team, c, row); });
+        [&](Index c, const ScratchRow& row) { lanes.deviators<kKinds>(team, c, row); });
   }
 };
 
